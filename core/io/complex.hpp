@@ -1,0 +1,36 @@
+// Simplicial complexes given by their maximal simplices, as 0-based vertex indices.
+//
+// Formats read (detected from the first line):
+//   delcert-complex v1   a line "NUM_VERTICES NUM_SIMPLICES", then one simplex per line;
+//                        blank lines and '#' comments are ignored.
+//   OFF                  a surface mesh in R^3: its faces must be triangles ("3 a b c").
+// Written: delcert-complex v1, simplices in the order stored.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/io/points.hpp"
+
+namespace delcert::io {
+
+struct Complex {
+  std::size_t num_vertices = 0;
+  std::vector<std::vector<int>> simplices;  // #simplices, each a list of distinct vertex indices
+};
+
+struct ComplexFile {
+  Complex complex;
+  std::optional<PointSet> embedded_points;  // the vertices, when the file carries them (OFF)
+};
+
+// Throws InputError("file:line: ...") on malformed counts, out-of-range or repeated indices,
+// non-triangular OFF faces, the same simplex listed twice, unknown tags or versions.
+ComplexFile read_complex(const std::string& path);
+ComplexFile parse_complex(const std::string& text, const std::string& name);
+
+std::string format_complex(const Complex& complex);
+void write_complex(const std::string& path, const Complex& complex);  // atomic
+
+}  // namespace delcert::io

@@ -1,0 +1,44 @@
+// Point sets: #points by dimension, stored row-major as doubles.
+//
+// Formats read (detected from the first line):
+//   delcert-points v1     our format: a line "DIM COUNT", then COUNT lines of DIM numbers;
+//                         blank lines and lines starting with '#' are ignored.
+//   OFF                   an OFF file in R^3 (faces, if any, are ignored here).
+//   nOFF                  GUDHI's n-dimensional OFF: "nOFF", the dimension, "NV NF NE", coordinates.
+// Written: delcert-points v1 with the shortest decimal text that reads back to the same double.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace delcert::io {
+
+struct PointSet {
+  int dimension = 0;
+  std::vector<double> coordinates;  // #points by dimension, row-major
+
+  std::size_t size() const { return dimension ? coordinates.size() / dimension : 0; }
+  std::span<const double> point(std::size_t i) const {
+    return {coordinates.data() + i * dimension, static_cast<std::size_t>(dimension)};
+  }
+  void push_back(std::span<const double> p) { coordinates.insert(coordinates.end(), p.begin(), p.end()); }
+};
+
+struct PointReadOptions {
+  int expected_dimension = 0;     // 0: any; otherwise a mismatch is an error
+  bool reject_duplicates = true;  // two bit-identical points are an error
+};
+
+// Throws InputError("file:line: ...") on anything malformed: unknown tag or version, bad counts,
+// malformed/NaN/infinite numbers, wrong dimension, duplicate points.
+PointSet read_points(const std::string& path, const PointReadOptions& options = {});
+PointSet parse_points(const std::string& text, const std::string& name, const PointReadOptions& options = {});
+
+std::string format_points(const PointSet& points);
+void write_points(const std::string& path, const PointSet& points);  // atomic
+
+// Shortest round-trip decimal text of a double.
+std::string format_double(double x);
+
+}  // namespace delcert::io

@@ -1,0 +1,106 @@
+#include "core/manifold/manifold.hpp"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace delcert {
+
+Manifold::Manifold(io::ManifoldSpec spec) : spec_(std::move(spec)) {
+  m_ = spec_.intrinsic_dimension;
+  N_ = spec_.ambient_dimension;
+  for (const auto& f : spec_.equations) {
+    f_.emplace_back(f);
+    std::vector<DoublePolynomial> row;
+    for (int j = 0; j < N_; ++j) row.emplace_back(f.derivative(j));
+    df_.push_back(std::move(row));
+  }
+  if (spec_.selector) selector_.emplace(*spec_.selector);
+}
+
+Eigen::VectorXd Manifold::evaluate(std::span<const double> x) const {
+  Eigen::VectorXd v(codimension());
+  for (int i = 0; i < codimension(); ++i) v[i] = f_[i](x);
+  return v;
+}
+
+Eigen::MatrixXd Manifold::jacobian(std::span<const double> x) const {
+  Eigen::MatrixXd J(codimension(), N_);
+  for (int i = 0; i < codimension(); ++i)
+    for (int j = 0; j < N_; ++j) J(i, j) = df_[i][j](x);
+  return J;
+}
+
+double Manifold::residual(std::span<const double> x) const { return evaluate(x).cwiseAbs().maxCoeff(); }
+
+bool Manifold::on_selected_component(std::span<const double> x) const { return !selector_ || (*selector_)(x) > 0; }
+
+std::optional<Frame> Manifold::frame(std::span<const double> p) const {
+  const int k = codimension();
+  Eigen::MatrixXd Jt = jacobian(p).transpose();  // N by k; its range is the normal space
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jt);
+  const auto& R = qr.matrixR();
+  double rmax = std::abs(R(0, 0));
+  if (!(rmax > 0) || !std::isfinite(rmax)) return std::nullopt;
+  for (int i = 0; i < k; ++i)
+    if (std::abs(R(i, i)) <= 1e-10 * rmax) return std::nullopt;
+  Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(N_, N_);
+  return Frame{Q.rightCols(m_), Q.leftCols(k)};
+}
+
+std::optional<Eigen::VectorXd> Manifold::psi(std::span<const double> /*p*/, const Frame& frame, const Eigen::VectorXd& y,
+                                             const NewtonOptions& options) const {
+  const Eigen::MatrixXd& W = frame.normal;
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(codimension());
+  Eigen::VectorXd x = y;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    Eigen::VectorXd F = evaluate(as_span(x));
+    Eigen::MatrixXd A = jacobian(as_span(x)) * W;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+    if (!lu.isInvertible()) return std::nullopt;
+    Eigen::VectorXd step = lu.solve(F);
+    if (!step.allFinite()) return std::nullopt;
+    t -= step;
+    x = y + W * t;
+    if (options.max_distance > 0 && t.norm() > options.max_distance) return std::nullopt;
+    if (step.norm() <= options.tolerance * (1 + x.norm())) return x;
+  }
+  // Accept a last iterate that satisfies the equations to rounding even if the steps stalled.
+  if (residual(as_span(x)) <= 1e-13 * (1 + x.squaredNorm())) return x;
+  return std::nullopt;
+}
+
+std::optional<Eigen::VectorXd> Manifold::project(std::span<const double> x0, const NewtonOptions& options) const {
+  Eigen::Map<const Eigen::VectorXd> x(x0.data(), N_);
+  Eigen::VectorXd z = x;
+  // Gauss-Newton with minimum-norm steps: lands on M near x.
+  bool converged = false;
+  for (int it = 0; it < options.max_iterations && !converged; ++it) {
+    Eigen::VectorXd F = evaluate(as_span(z));
+    Eigen::MatrixXd J = jacobian(as_span(z));
+    Eigen::MatrixXd JJt = J * J.transpose();
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(JJt);
+    if (!lu.isInvertible()) return std::nullopt;
+    Eigen::VectorXd step = J.transpose() * lu.solve(F);
+    if (!step.allFinite()) return std::nullopt;
+    z -= step;
+    converged = step.norm() <= options.tolerance * (1 + z.norm());
+  }
+  if (!converged && residual(as_span(z)) > 1e-12 * (1 + z.squaredNorm())) return std::nullopt;
+  // Slide along M until x - z is normal at z: z <- psi_z(projection of x onto T_z).
+  for (int it = 0; it < options.max_iterations; ++it) {
+    auto fr = frame(as_span(z));
+    if (!fr) return std::nullopt;
+    Eigen::VectorXd tangential = fr->tangent.transpose() * (x - z);
+    Eigen::VectorXd y = z + fr->tangent * tangential;
+    auto next = psi(as_span(z), *fr, y, options);
+    if (!next) return std::nullopt;
+    double move = (*next - z).norm();
+    z = *next;
+    if (move <= options.tolerance * (1 + z.norm()) || tangential.norm() <= options.tolerance * (1 + z.norm())) break;
+  }
+  if (options.max_distance > 0 && (z - x).norm() > options.max_distance) return std::nullopt;
+  return z;
+}
+
+}  // namespace delcert

@@ -1,0 +1,77 @@
+// The manifold model used by the producer, in double precision (DESIGN §2, §3).
+//
+// M = { x in R^N : F(x) = 0 } (plus selector > 0 when the spec has one), with F the spec's
+// N - m polynomials. At a point p the tangent flat is T_p = p + ker J_F(p), evaluated at p
+// itself even when p is only within rounding of M (DESIGN §3).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/io/spec.hpp"
+#include "exact/polynomial.hpp"
+
+namespace delcert {
+
+// Orthonormal frame at a point: tangent is N by m, normal is N by (N - m); together an
+// orthonormal basis of R^N with span(tangent) = ker J_F(p).
+struct Frame {
+  Eigen::MatrixXd tangent;  // N by m
+  Eigen::MatrixXd normal;   // N by (N - m)
+};
+
+struct NewtonOptions {
+  int max_iterations = 50;
+  double tolerance = 1e-14;     // stop when the step is below tolerance * (1 + |x|)
+  double max_distance = 0.0;    // 0: no bound; otherwise fail if the solution moves farther than this
+};
+
+class Manifold {
+ public:
+  explicit Manifold(io::ManifoldSpec spec);
+
+  const io::ManifoldSpec& spec() const { return spec_; }
+  int intrinsic_dimension() const { return m_; }  // m
+  int ambient_dimension() const { return N_; }    // N
+  int codimension() const { return N_ - m_; }
+
+  // F(x), N - m values.
+  Eigen::VectorXd evaluate(std::span<const double> x) const;
+  // J_F(x), (N - m) by N.
+  Eigen::MatrixXd jacobian(std::span<const double> x) const;
+  // max_i |F_i(x)|
+  double residual(std::span<const double> x) const;
+  // True when the spec has no selector or selector(x) > 0.
+  bool on_selected_component(std::span<const double> x) const;
+
+  // Orthonormal tangent and normal bases at p, from a full QR of J_F(p)^T.
+  // Returns nullopt when J_F(p) is numerically rank deficient (p is not a regular point).
+  std::optional<Frame> frame(std::span<const double> p) const;
+
+  // psi_p: the inverse of the orthogonal projection of M onto T_p near p. `y` is a point of
+  // T_p (ambient coordinates); returns x on M with x - y in span(frame.normal), found by Newton
+  // on t -> F(y + normal t). nullopt when Newton does not converge, the Jacobian becomes
+  // singular, or x is farther than options.max_distance from y.
+  std::optional<Eigen::VectorXd> psi(std::span<const double> p, const Frame& frame, const Eigen::VectorXd& y,
+                                     const NewtonOptions& options = {}) const;
+
+  // Closest point of M to x (a local minimiser of |x - z| reached from x): Gauss-Newton onto M,
+  // then alternating tangent projection and psi until x - z is normal at z. nullopt on failure.
+  std::optional<Eigen::VectorXd> project(std::span<const double> x, const NewtonOptions& options = {}) const;
+
+ private:
+  io::ManifoldSpec spec_;
+  int m_ = 0, N_ = 0;
+  std::vector<DoublePolynomial> f_;
+  std::vector<std::vector<DoublePolynomial>> df_;  // df_[i][j] = dF_i / dx_j
+  std::optional<DoublePolynomial> selector_;
+};
+
+inline std::span<const double> as_span(const Eigen::VectorXd& v) {
+  return {v.data(), static_cast<std::size_t>(v.size())};
+}
+
+}  // namespace delcert

@@ -1,0 +1,184 @@
+#include "core/sampling/sampling.hpp"
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <numbers>
+#include <queue>
+#include <stdexcept>
+
+#include "core/spatial/kd_tree.hpp"
+
+namespace delcert {
+
+namespace {
+
+using Kind = io::ShapeSpec::Kind;
+
+void sample_shape(const io::ShapeSpec& sh, int N, Random& rng, std::vector<double>& p) {
+  p.assign(N, 0.0);
+  const double two_pi = 2 * std::numbers::pi;
+  switch (sh.kind) {
+    case Kind::sphere: {
+      double norm2 = 0;
+      while (norm2 < 1e-20) {
+        norm2 = 0;
+        for (int j = 0; j < N; ++j) p[j] = rng.normal(), norm2 += p[j] * p[j];
+      }
+      double s = sh.radius.get_d() / std::sqrt(norm2);
+      for (int j = 0; j < N; ++j) p[j] = sh.center[j].get_d() + s * p[j];
+      break;
+    }
+    case Kind::product_of_circles:
+      for (std::size_t c = 0; c < sh.radii.size(); ++c) {
+        double a = rng.uniform(0, two_pi), r = sh.radii[c].get_d();
+        p[2 * c] = r * std::cos(a);
+        p[2 * c + 1] = r * std::sin(a);
+      }
+      break;
+    case Kind::torus_of_revolution: {
+      // Area element (R + r cos v) du dv: rejection on v.
+      double R = sh.major_radius.get_d(), r = sh.minor_radius.get_d();
+      double u = rng.uniform(0, two_pi), v;
+      do v = rng.uniform(0, two_pi);
+      while (rng.uniform() * (R + r) >= R + r * std::cos(v));
+      p[0] = (R + r * std::cos(v)) * std::cos(u);
+      p[1] = (R + r * std::cos(v)) * std::sin(u);
+      p[2] = r * std::sin(v);
+      break;
+    }
+    case Kind::so3: {
+      // Haar measure: a uniform unit quaternion. The Frobenius metric on SO(3) is bi-invariant,
+      // so Haar measure is its volume measure.
+      double q[4], n2 = 0;
+      while (n2 < 1e-20) {
+        n2 = 0;
+        for (double& v : q) v = rng.normal(), n2 += v * v;
+      }
+      double n = std::sqrt(n2), w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+      double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+                     2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                     2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+      p.assign(R, R + 9);
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+void sample_manifold(const Manifold& manifold, std::size_t count, Random& rng, io::PointSet& out) {
+  const auto& spec = manifold.spec();
+  const int N = manifold.ambient_dimension();
+  out.dimension = N;
+  out.coordinates.reserve(out.coordinates.size() + count * N);
+  std::vector<double> p;
+  if (spec.parametrization) {
+    for (std::size_t i = 0; i < count; ++i) {
+      sample_shape(*spec.parametrization, N, rng, p);
+      out.push_back(p);
+    }
+    return;
+  }
+  std::size_t produced = 0, attempts = 0;
+  p.resize(N);
+  while (produced < count) {
+    if (++attempts > 100 * count + 1000)
+      throw std::runtime_error("sampling " + spec.source + ": too few bounding-box points project onto M; check "
+                               "the bounding box and the equations");
+    for (int j = 0; j < N; ++j) p[j] = rng.uniform(spec.bounding_box[j].first, spec.bounding_box[j].second);
+    auto z = manifold.project(p);
+    if (!z || !manifold.on_selected_component(as_span(*z))) continue;
+    bool inside = true;
+    for (int j = 0; j < N; ++j)
+      inside = inside && (*z)[j] >= spec.bounding_box[j].first && (*z)[j] <= spec.bounding_box[j].second;
+    if (!inside) continue;
+    out.push_back(as_span(*z));
+    ++produced;
+  }
+}
+
+std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius) {
+  const std::size_t n = dense.size();
+  const int d = dense.dimension;
+  std::vector<std::size_t> selected;
+  if (!n) {
+    if (covering_radius) *covering_radius = 0;
+    return selected;
+  }
+  KdTree tree(dense.coordinates.data(), n, d);
+  std::vector<double> dist2(n, std::numeric_limits<double>::infinity());
+  // Lazy max-heap of (squared distance to the selection, index); ties go to the smaller index.
+  using Item = std::pair<double, std::size_t>;
+  auto cmp = [](const Item& a, const Item& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
+  std::priority_queue<Item, std::vector<Item>, decltype(cmp)> heap(cmp);
+  const double eps2 = eps * eps;
+  std::size_t next = 0;
+  double radius2 = std::numeric_limits<double>::infinity();
+  for (;;) {
+    selected.push_back(next);
+    auto q = dense.point(next);
+    // Every point is within radius2 of the selection, so only points within radius2 of the new
+    // point can get closer.
+    tree.for_each_in_ball(q, radius2, [&](std::size_t i, double d2) {
+      if (d2 < dist2[i]) {
+        dist2[i] = d2;
+        heap.emplace(d2, i);
+      }
+    });
+    while (!heap.empty() && heap.top().first != dist2[heap.top().second]) heap.pop();
+    if (heap.empty()) {
+      radius2 = 0;
+      break;
+    }
+    radius2 = heap.top().first;
+    if (radius2 < eps2) break;
+    next = heap.top().second;
+    heap.pop();
+  }
+  if (covering_radius) *covering_radius = std::sqrt(radius2);
+  return selected;
+}
+
+EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options) {
+  if (!(options.eps > 0) || !std::isfinite(options.eps)) throw std::invalid_argument("eps must be a positive number");
+  Random rng(options.seed);
+  io::PointSet dense;
+  dense.dimension = manifold.ambient_dimension();
+  std::size_t target = options.min_dense;
+  std::vector<std::size_t> selected;
+  double cover = 0;
+  for (int round = 0; round < 6; ++round) {
+    sample_manifold(manifold, target - dense.size(), rng, dense);
+    selected = farthest_point_selection(dense, options.eps, &cover);
+    auto wanted = static_cast<std::size_t>(options.oversampling * static_cast<double>(selected.size()));
+    wanted = std::min(std::max(wanted, options.min_dense), options.max_dense);
+    if (wanted <= dense.size() * 11 / 10) break;  // dense enough: within 10% of the target
+    target = wanted;
+  }
+  EpsNetResult r;
+  r.points.dimension = dense.dimension;
+  for (auto i : selected) {
+    r.points.push_back(dense.point(i));
+    r.max_residual = std::max(r.max_residual, manifold.residual(dense.point(i)));
+  }
+  r.covering_radius = cover;
+  r.dense_size = dense.size();
+  KdTree tree(r.points.coordinates.data(), r.points.size(), r.points.dimension);
+  double min2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    auto nn = tree.nearest(r.points.point(i), 2);
+    if (nn.size() == 2) {
+      double s = 0;
+      for (int j = 0; j < r.points.dimension; ++j) {
+        double e = r.points.point(i)[j] - r.points.point(nn[1])[j];
+        s += e * e;
+      }
+      min2 = std::min(min2, s);
+    }
+  }
+  r.min_distance = std::isfinite(min2) ? std::sqrt(min2) : 0;
+  return r;
+}
+
+}  // namespace delcert

@@ -1,0 +1,45 @@
+// Sampling a manifold: uniform random samples and epsilon-nets by farthest-point selection.
+#pragma once
+
+#include <cstdint>
+
+#include "core/io/points.hpp"
+#include "core/manifold/manifold.hpp"
+#include "core/sampling/random.hpp"
+
+namespace delcert {
+
+// Appends `count` random points of M to `out`. Built-in shapes (the spec's "parametrization")
+// are sampled through their parametrisation, uniformly with respect to volume. Any other spec:
+// uniform points of its bounding box projected onto M (not volume-uniform; failures retried).
+// Throws std::runtime_error if a generic spec yields no projectable points.
+void sample_manifold(const Manifold& manifold, std::size_t count, Random& random, io::PointSet& out);
+
+struct EpsNetOptions {
+  double eps = 0.25;
+  std::uint64_t seed = 1;
+  // The dense sample has about `oversampling` points per net point (at least `min_dense`).
+  double oversampling = 30;
+  std::size_t min_dense = 4000;
+  std::size_t max_dense = 4'000'000;
+};
+
+struct EpsNetResult {
+  io::PointSet points;            // in selection order
+  double covering_radius = 0;     // max distance from a dense-sample point to the net (< eps)
+  double min_distance = 0;        // smallest pairwise distance in the net (>= eps)
+  double max_residual = 0;        // max over net points of max_i |F_i(p)|
+  std::size_t dense_size = 0;
+};
+
+// An eps-net of M: farthest-point selection from a dense sample, stopping when every dense
+// point is within eps of the net. The output is eps-sparse (pairwise distance >= eps) and, as
+// far as the dense sample can tell, an eps-sample. Same options, same bytes.
+EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options);
+
+// Farthest-point selection on a given point set: indices of the selected points, in order,
+// starting from point 0, until the farthest remaining point is closer than eps. Also returns
+// the final covering radius of the selection over `dense`.
+std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius);
+
+}  // namespace delcert

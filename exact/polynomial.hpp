@@ -1,0 +1,129 @@
+// Multivariate polynomials with exact rational coefficients.
+//
+// A Polynomial is a finite sum of terms c * x1^e1 * ... * xN^eN with c an exact rational
+// (GMP mpq). It is parsed from strings such as "x1^2 + x2^2 - 1/4" or "0.1*x1*x3 - 2.5",
+// where every decimal literal is the exact rational it spells ("0.1" is 1/10).
+//
+// Evaluation is templated on the number type so that the same polynomial is evaluated in
+// double (the producer), in interval arithmetic (the certifier's filter) and exactly (the
+// certifier's fallback). For the exact, division-free path, integer_form() gives integer
+// coefficients a_i and a positive integer denominator D with p = (sum a_i x^e_i) / D, so the
+// sign of p(x) is the sign of sum a_i x^e_i, which needs only ring operations.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace delcert {
+
+// A parse error carries the 0-based character offset where the problem was found.
+struct PolynomialParseError : std::runtime_error {
+  PolynomialParseError(const std::string& what, std::size_t offset)
+      : std::runtime_error(what), offset(offset) {}
+  std::size_t offset;
+};
+
+// Parses a rational literal: integer ("-3"), decimal ("0.125", "1e-3", "2.5E+2") or fraction ("1/3").
+// Throws std::invalid_argument on anything else.
+mpq_class parse_rational(std::string_view text);
+
+// Exact decimal string of a rational if it has a finite decimal expansion, else "p/q".
+std::string rational_to_string(const mpq_class& q);
+
+struct Monomial {
+  std::vector<std::uint32_t> exponents;  // one per variable, #vars
+  auto operator<=>(const Monomial&) const = default;
+};
+
+struct Term {
+  mpq_class coefficient;  // never zero inside a Polynomial
+  Monomial monomial;
+};
+
+class Polynomial {
+ public:
+  Polynomial() = default;
+  explicit Polynomial(int num_variables) : num_vars_(num_variables) {}
+
+  // Parses `text` over the variables x1..x{num_variables}. Division is allowed only by a
+  // non-zero constant sub-expression; exponents are non-negative integer literals.
+  static Polynomial parse(std::string_view text, int num_variables);
+  static Polynomial constant(const mpq_class& c, int num_variables);
+  static Polynomial variable(int index, int num_variables);  // x_{index+1}, 0-based index
+
+  int num_variables() const { return num_vars_; }
+  const std::vector<Term>& terms() const { return terms_; }
+  bool is_zero() const { return terms_.empty(); }
+  bool is_constant() const;
+  int degree() const;
+
+  Polynomial operator+(const Polynomial& o) const;
+  Polynomial operator-(const Polynomial& o) const;
+  Polynomial operator*(const Polynomial& o) const;
+  Polynomial operator-() const;
+  Polynomial scaled(const mpq_class& c) const;
+  Polynomial pow(unsigned e) const;
+  bool operator==(const Polynomial& o) const;
+
+  // Exact partial derivative with respect to x_{var+1} (0-based var).
+  Polynomial derivative(int var) const;
+
+  // Canonical text: terms in decreasing monomial order, exact rational coefficients.
+  std::string to_string() const;
+
+  // Integer form: p = (sum numerators[i] * x^terms()[i].monomial) / denominator, denominator > 0.
+  struct IntegerForm {
+    std::vector<mpz_class> numerators;  // aligned with terms()
+    mpz_class denominator;
+  };
+  IntegerForm integer_form() const;
+
+  // Evaluates with coefficients supplied by `coef(term_index)` (so that each number type can
+  // convert the exact rational coefficient the way it needs: rounded, enclosed or exact).
+  // Powers are computed by repeated multiplication: exact in exact types, and for intervals
+  // an enclosure of the true value.
+  template <class T, class CoefFn>
+  T evaluate_with(std::span<const T> x, CoefFn&& coef) const {
+    T sum(0);
+    for (std::size_t i = 0; i < terms_.size(); ++i) {
+      T t = coef(i);
+      const auto& e = terms_[i].monomial.exponents;
+      for (std::size_t v = 0; v < e.size(); ++v)
+        for (std::uint32_t k = 0; k < e[v]; ++k) t = t * x[v];
+      sum = sum + t;
+    }
+    return sum;
+  }
+
+  // Plain double evaluation (coefficients rounded to nearest double).
+  double evaluate(std::span<const double> x) const;
+  // Exact evaluation at a rational point.
+  mpq_class evaluate(std::span<const mpq_class> x) const;
+
+ private:
+  void normalize();  // sort, merge equal monomials, drop zeros
+  int num_vars_ = 0;
+  std::vector<Term> terms_;
+};
+
+// A polynomial prepared for fast double evaluation: coefficients rounded once.
+class DoublePolynomial {
+ public:
+  DoublePolynomial() = default;
+  explicit DoublePolynomial(const Polynomial& p);
+  double operator()(std::span<const double> x) const;
+  int num_variables() const { return num_vars_; }
+
+ private:
+  int num_vars_ = 0;
+  std::vector<double> coefficients_;
+  std::vector<std::uint32_t> exponents_;  // #terms by #vars, row-major
+};
+
+}  // namespace delcert
