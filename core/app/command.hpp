@@ -1,0 +1,26 @@
+// Each `delcert` subcommand lives in its own file and registers itself on the CLI11 app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace delcert::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitNotConverged = 4;
+
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> run;  // may throw io::InputError (-> exit 2)
+};
+
+// Help text for --manifold, listing the built-in names.
+std::string manifold_option_help();
+
+Command add_sample_command(CLI::App& app);
+Command add_tangential_command(CLI::App& app);
+
+}  // namespace delcert::app
