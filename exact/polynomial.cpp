@@ -62,7 +62,9 @@ mpq_class parse_rational(std::string_view text) {
   return negative ? mpq_class(-q) : q;
 }
 
-std::string rational_to_string(const mpq_class& q) {
+std::string rational_to_string(const mpq_class& value) {
+  mpq_class q = value;
+  q.canonicalize();
   mpz_class den = q.get_den();
   // A finite decimal expansion exists iff the reduced denominator is 2^a 5^b.
   mpz_class d = den;

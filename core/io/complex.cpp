@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 
 #include "core/io/atomic_file.hpp"
 #include "core/io/input_error.hpp"
@@ -116,5 +117,21 @@ std::string format_complex(const Complex& c) {
 }
 
 void write_complex(const std::string& path, const Complex& c) { write_file_atomically(path, format_complex(c)); }
+
+std::string format_off(const PointSet& points, const Complex& c) {
+  if (points.dimension != 3 || c.num_vertices != points.size())
+    throw std::invalid_argument("OFF needs points in R^3 and a complex on exactly those vertices");
+  std::string out = "OFF\n" + std::to_string(points.size()) + " " + std::to_string(c.simplices.size()) + " 0\n" +
+                    format_coordinate_lines(points);
+  for (const auto& s : c.simplices) {
+    if (s.size() != 3) throw std::invalid_argument("OFF faces must be triangles");
+    out += "3 " + std::to_string(s[0]) + " " + std::to_string(s[1]) + " " + std::to_string(s[2]) + "\n";
+  }
+  return out;
+}
+
+void write_off(const std::string& path, const PointSet& points, const Complex& c) {
+  write_file_atomically(path, format_off(points, c));
+}
 
 }  // namespace delcert::io

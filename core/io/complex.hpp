@@ -33,4 +33,8 @@ ComplexFile parse_complex(const std::string& text, const std::string& name);
 std::string format_complex(const Complex& complex);
 void write_complex(const std::string& path, const Complex& complex);  // atomic
 
+// A surface mesh as OFF: points in R^3 and triangles (throws std::invalid_argument otherwise).
+std::string format_off(const PointSet& points, const Complex& triangles);
+void write_off(const std::string& path, const PointSet& points, const Complex& triangles);  // atomic
+
 }  // namespace delcert::io

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
 #include "core/io/atomic_file.hpp"
@@ -127,8 +128,25 @@ std::string format_double(double x) {
   return std::string(buf, ptr);
 }
 
-std::string format_points(const PointSet& points) {
-  std::string out = "delcert-points v1\n" + std::to_string(points.dimension) + " " + std::to_string(points.size()) + "\n";
+std::string format_points(const PointSet& points, PointFormat format) {
+  std::string out;
+  switch (format) {
+    case PointFormat::delcert:
+      out = "delcert-points v1\n" + std::to_string(points.dimension) + " " + std::to_string(points.size()) + "\n";
+      break;
+    case PointFormat::off:
+      if (points.dimension != 3) throw std::invalid_argument("OFF holds points in R^3 only; use nOFF");
+      out = "OFF\n" + std::to_string(points.size()) + " 0 0\n";
+      break;
+    case PointFormat::noff:
+      out = "nOFF\n" + std::to_string(points.dimension) + "\n" + std::to_string(points.size()) + " 0 0\n";
+      break;
+  }
+  return out + format_coordinate_lines(points);
+}
+
+std::string format_coordinate_lines(const PointSet& points) {
+  std::string out;
   for (std::size_t i = 0; i < points.size(); ++i) {
     auto p = points.point(i);
     for (int k = 0; k < points.dimension; ++k) {
@@ -140,6 +158,8 @@ std::string format_points(const PointSet& points) {
   return out;
 }
 
-void write_points(const std::string& path, const PointSet& points) { write_file_atomically(path, format_points(points)); }
+void write_points(const std::string& path, const PointSet& points, PointFormat format) {
+  write_file_atomically(path, format_points(points, format));
+}
 
 }  // namespace delcert::io

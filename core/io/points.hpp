@@ -5,7 +5,8 @@
 //                         blank lines and lines starting with '#' are ignored.
 //   OFF                   an OFF file in R^3 (faces, if any, are ignored here).
 //   nOFF                  GUDHI's n-dimensional OFF: "nOFF", the dimension, "NV NF NE", coordinates.
-// Written: delcert-points v1 with the shortest decimal text that reads back to the same double.
+// Written: delcert-points v1 (default), OFF or nOFF, always with the shortest decimal text that
+// reads back to the same double, so every format round-trips bit for bit.
 #pragma once
 
 #include <span>
@@ -35,8 +36,14 @@ struct PointReadOptions {
 PointSet read_points(const std::string& path, const PointReadOptions& options = {});
 PointSet parse_points(const std::string& text, const std::string& name, const PointReadOptions& options = {});
 
-std::string format_points(const PointSet& points);
-void write_points(const std::string& path, const PointSet& points);  // atomic
+enum class PointFormat { delcert, off, noff };
+
+// OFF needs dimension 3 (throws std::invalid_argument otherwise); nOFF takes any dimension.
+std::string format_points(const PointSet& points, PointFormat format = PointFormat::delcert);
+void write_points(const std::string& path, const PointSet& points, PointFormat format = PointFormat::delcert);  // atomic
+
+// The coordinate lines alone (one point per line), as used by every format above.
+std::string format_coordinate_lines(const PointSet& points);
 
 // Shortest round-trip decimal text of a double.
 std::string format_double(double x);

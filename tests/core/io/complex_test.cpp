@@ -1,0 +1,69 @@
+#include "core/io/complex.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/io/input_error.hpp"
+#include "tests/test_support.hpp"
+
+namespace delcert::io {
+namespace {
+
+using test::fixture;
+
+TEST(Complex, RoundTripIsExact) {
+  Complex c;
+  c.num_vertices = 10;
+  c.simplices = {{0, 1, 2, 3}, {4, 5, 6}, {7, 8}, {9}, {3, 2, 9, 8}};
+  std::string text = format_complex(c);
+  ComplexFile back = parse_complex(text, "mem");
+  EXPECT_EQ(back.complex.num_vertices, c.num_vertices);
+  EXPECT_EQ(back.complex.simplices, c.simplices);
+  EXPECT_FALSE(back.embedded_points.has_value());
+  EXPECT_EQ(format_complex(back.complex), text);
+}
+
+TEST(Complex, OffSurfaceRoundTrip) {
+  ComplexFile oct = read_complex(fixture("complexes/octahedron.off"));
+  ASSERT_TRUE(oct.embedded_points.has_value());
+  EXPECT_EQ(oct.complex.num_vertices, 6u);
+  EXPECT_EQ(oct.complex.simplices.size(), 8u);
+  std::string text = format_off(*oct.embedded_points, oct.complex);
+  ComplexFile back = parse_complex(text, "mem.off");
+  EXPECT_EQ(back.complex.simplices, oct.complex.simplices);
+  EXPECT_EQ(back.embedded_points->coordinates, oct.embedded_points->coordinates);
+  EXPECT_EQ(format_off(*back.embedded_points, back.complex), text);
+}
+
+struct BadCase {
+  const char* file;
+  long line;
+  const char* message_part;
+};
+
+class BadComplex : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadComplex, ReportsFileLineAndProblem) {
+  const BadCase& c = GetParam();
+  std::string path = fixture(std::string("bad/") + c.file);
+  try {
+    read_complex(path);
+    FAIL() << "no error for " << c.file;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), c.line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.message_part), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":", 0), 0u) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Malformed, BadComplex,
+    ::testing::Values(BadCase{"complex-out-of-range.txt", 4, "vertex index 4 out of range"},
+                      BadCase{"complex-repeated-index.txt", 4, "vertex 3 repeated"},
+                      BadCase{"complex-count-mismatch.txt", 4, "announces 3 simplices but the file has 2"},
+                      BadCase{"complex-duplicate-simplex.txt", 4, "simplex listed twice (first on line 3)"},
+                      BadCase{"complex-negative-index.txt", 3, "expected a vertex index"},
+                      BadCase{"complex-unknown-version.txt", 1, "unsupported complex format version"},
+                      BadCase{"complex-off-quad.off", 7, "face has 4 vertices"}));
+
+}  // namespace
+}  // namespace delcert::io

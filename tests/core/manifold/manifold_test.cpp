@@ -1,0 +1,118 @@
+#include "core/manifold/manifold.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "core/io/spec.hpp"
+#include "core/sampling/sampling.hpp"
+#include "tests/test_support.hpp"
+
+namespace delcert {
+namespace {
+
+class EveryBuiltin : public ::testing::TestWithParam<std::string> {
+ protected:
+  Manifold manifold{io::read_spec("builtin:" + GetParam())};
+  io::PointSet sample(std::size_t n, std::uint64_t seed) const {
+    Random rng(seed);
+    io::PointSet ps;
+    sample_manifold(manifold, n, rng, ps);
+    return ps;
+  }
+};
+
+TEST_P(EveryBuiltin, SamplesLieOnTheManifold) {
+  auto ps = sample(200, 11);
+  ASSERT_EQ(ps.size(), 200u);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    EXPECT_LT(manifold.residual(ps.point(i)), 1e-12);
+    EXPECT_TRUE(manifold.on_selected_component(ps.point(i)));
+  }
+}
+
+TEST_P(EveryBuiltin, TangentBasesAreOrthonormalAndOrthogonalToEveryGradient) {
+  const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
+  auto ps = sample(100, 12);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    auto f = manifold.frame(ps.point(i));
+    ASSERT_TRUE(f.has_value());
+    ASSERT_EQ(f->tangent.rows(), N);
+    ASSERT_EQ(f->tangent.cols(), m);
+    ASSERT_EQ(f->normal.cols(), N - m);
+    Eigen::MatrixXd Q(N, N);
+    Q << f->tangent, f->normal;
+    EXPECT_LT((Q.transpose() * Q - Eigen::MatrixXd::Identity(N, N)).cwiseAbs().maxCoeff(), 1e-13);
+    Eigen::MatrixXd J = manifold.jacobian(ps.point(i));
+    // Every gradient (row of J) is orthogonal to the tangent space, relative to its length.
+    for (int r = 0; r < J.rows(); ++r)
+      EXPECT_LT((J.row(r) * f->tangent).cwiseAbs().maxCoeff(), 1e-13 * J.row(r).norm());
+  }
+}
+
+TEST_P(EveryBuiltin, PsiInvertsTheTangentProjection) {
+  const int m = manifold.intrinsic_dimension();
+  auto ps = sample(60, 13);
+  Random rng(14);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    Eigen::Map<const Eigen::VectorXd> p(ps.point(i).data(), manifold.ambient_dimension());
+    auto f = manifold.frame(ps.point(i));
+    ASSERT_TRUE(f.has_value());
+    for (int k = 0; k < 5; ++k) {
+      Eigen::VectorXd u(m);
+      for (int j = 0; j < m; ++j) u[j] = rng.uniform(-0.2, 0.2);  // well inside the reach (>= 1)
+      Eigen::VectorXd y = p + f->tangent * u;
+      auto x = manifold.psi(ps.point(i), *f, y);
+      ASSERT_TRUE(x.has_value());
+      EXPECT_LT(manifold.residual(as_span(*x)), 1e-13);
+      // pi_p(psi_p(y)) = y: the tangent coordinates of x equal u.
+      Eigen::VectorXd back = p + f->tangent * (f->tangent.transpose() * (*x - p));
+      EXPECT_LT((back - y).norm(), 1e-12);
+    }
+  }
+}
+
+TEST_P(EveryBuiltin, ProjectFindsTheClosestPoint) {
+  auto ps = sample(40, 15);
+  Random rng(16);
+  const int N = manifold.ambient_dimension();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    Eigen::Map<const Eigen::VectorXd> p(ps.point(i).data(), N);
+    auto f = manifold.frame(ps.point(i));
+    Eigen::VectorXd nu(N - manifold.intrinsic_dimension());
+    for (int j = 0; j < nu.size(); ++j) nu[j] = rng.uniform(-0.1, 0.1);
+    Eigen::VectorXd x = p + f->normal * nu;  // a point off M whose closest point is p
+    auto z = manifold.project(as_span(x));
+    ASSERT_TRUE(z.has_value());
+    EXPECT_LT((*z - p).norm(), 1e-10);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Builtins, EveryBuiltin,
+                         ::testing::Values("sphere-2", "sphere-3", "clifford-torus-2", "clifford-torus-3",
+                                           "torus-of-revolution", "so3"));
+
+TEST(Manifold, PsiReportsFailureInsteadOfGarbage) {
+  Manifold sphere(io::read_spec("builtin:sphere-2"));
+  std::vector<double> p{0, 0, 1};
+  auto f = sphere.frame(p);
+  ASSERT_TRUE(f.has_value());
+  // A point of T_p at distance 2 from p: the normal line through it misses the unit sphere.
+  Eigen::VectorXd y = Eigen::Vector3d(0, 0, 1) + f->tangent.col(0) * 2.0;
+  EXPECT_FALSE(sphere.psi(p, *f, y).has_value());
+  // The centre of the sphere is singular for the Jacobian.
+  std::vector<double> origin{0, 0, 0};
+  EXPECT_FALSE(sphere.frame(origin).has_value());
+}
+
+TEST(Manifold, GenericSpecSamplesByProjection) {
+  Manifold ellipsoid(io::read_spec(test::fixture("specs/ellipsoid.json")));
+  Random rng(3);
+  io::PointSet ps;
+  sample_manifold(ellipsoid, 100, rng, ps);
+  ASSERT_EQ(ps.size(), 100u);
+  for (std::size_t i = 0; i < ps.size(); ++i) EXPECT_LT(ellipsoid.residual(ps.point(i)), 1e-12);
+}
+
+}  // namespace
+}  // namespace delcert

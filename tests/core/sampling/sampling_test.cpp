@@ -1,0 +1,106 @@
+#include "core/sampling/sampling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/io/spec.hpp"
+#include "core/spatial/kd_tree.hpp"
+
+namespace delcert {
+namespace {
+
+double min_pairwise_distance_brute_force(const io::PointSet& ps) {
+  double best = INFINITY;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (std::size_t j = i + 1; j < ps.size(); ++j) {
+      double s = 0;
+      for (int k = 0; k < ps.dimension; ++k) s += std::pow(ps.point(i)[k] - ps.point(j)[k], 2);
+      best = std::min(best, std::sqrt(s));
+    }
+  return best;
+}
+
+struct NetCase {
+  const char* manifold;
+  double eps;
+};
+
+class EpsNet : public ::testing::TestWithParam<NetCase> {};
+
+TEST_P(EpsNet, IsSparseCoveringAndDeterministic) {
+  Manifold manifold(io::read_spec(std::string("builtin:") + GetParam().manifold));
+  EpsNetOptions o;
+  o.eps = GetParam().eps;
+  o.seed = 42;
+  EpsNetResult a = eps_net(manifold, o);
+  ASSERT_GT(a.points.size(), 10u);
+  double dmin = min_pairwise_distance_brute_force(a.points);
+  EXPECT_GE(dmin, o.eps);
+  EXPECT_EQ(dmin, a.min_distance);
+  EXPECT_LT(a.covering_radius, o.eps);
+  EXPECT_LT(a.max_residual, 1e-12);
+  // An independent dense sample (other seed) is covered at about eps too.
+  Random rng(99);
+  io::PointSet probe;
+  sample_manifold(manifold, 2000, rng, probe);
+  KdTree tree(a.points.coordinates.data(), a.points.size(), a.points.dimension);
+  double worst = 0;
+  for (std::size_t i = 0; i < probe.size(); ++i) {
+    auto nn = tree.nearest(probe.point(i), 1);
+    double s = 0;
+    for (int k = 0; k < probe.dimension; ++k) s += std::pow(probe.point(i)[k] - a.points.point(nn[0])[k], 2);
+    worst = std::max(worst, std::sqrt(s));
+  }
+  EXPECT_LT(worst, 1.5 * o.eps);
+  // Same seed, same bytes; another seed, another net.
+  EpsNetResult b = eps_net(manifold, o);
+  EXPECT_EQ(io::format_points(a.points), io::format_points(b.points));
+  o.seed = 43;
+  EXPECT_NE(io::format_points(eps_net(manifold, o).points), io::format_points(a.points));
+}
+
+INSTANTIATE_TEST_SUITE_P(Builtins, EpsNet,
+                         ::testing::Values(NetCase{"sphere-2", 0.2}, NetCase{"clifford-torus-2", 0.3},
+                                           NetCase{"torus-of-revolution", 0.4}, NetCase{"sphere-3", 0.45},
+                                           NetCase{"so3", 0.8}));
+
+TEST(FarthestPoint, KnownAnswerOnALine) {
+  io::PointSet ps;
+  ps.dimension = 1;
+  for (double x : {0.0, 1.0, 2.0, 3.0, 4.0, 10.0}) ps.coordinates.push_back(x);
+  double cover = 0;
+  auto sel = farthest_point_selection(ps, 2.5, &cover);
+  // 0 first; farthest is 10; then 4 (distance 4 to {0, 10}); then 2 is at distance 2 < 2.5: stop.
+  EXPECT_EQ(sel, (std::vector<std::size_t>{0, 5, 4}));
+  EXPECT_DOUBLE_EQ(cover, 2.0);
+}
+
+TEST(KdTree, AgreesWithBruteForce) {
+  Random rng(5);
+  io::PointSet ps;
+  ps.dimension = 4;
+  for (int i = 0; i < 3000; ++i) ps.coordinates.push_back(rng.uniform(-1, 1));
+  KdTree tree(ps.coordinates.data(), ps.size(), ps.dimension, 7);
+  for (int t = 0; t < 50; ++t) {
+    std::vector<double> q(4);
+    for (double& v : q) v = rng.uniform(-1, 1);
+    double r2 = rng.uniform(0, 0.3);
+    std::vector<std::size_t> brute;
+    std::vector<std::pair<double, std::size_t>> all;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += std::pow(ps.point(i)[k] - q[k], 2);
+      if (s <= r2) brute.push_back(i);
+      all.emplace_back(s, i);
+    }
+    EXPECT_EQ(tree.ball(q, r2), brute);
+    std::sort(all.begin(), all.end());
+    auto nn = tree.nearest(q, 9);
+    ASSERT_EQ(nn.size(), 9u);
+    for (int k = 0; k < 9; ++k) EXPECT_EQ(nn[k], all[k].second);
+  }
+}
+
+}  // namespace
+}  // namespace delcert
