@@ -254,6 +254,9 @@ Polynomial Polynomial::operator+(const Polynomial& o) const {
   Polynomial r(std::max(num_vars_, o.num_vars_));
   r.terms_ = terms_;
   r.terms_.insert(r.terms_.end(), o.terms_.begin(), o.terms_.end());
+  // Operands over fewer variables (e.g. a default-constructed zero) get their exponent vectors
+  // padded, so that equal monomials compare equal and merge.
+  for (auto& t : r.terms_) t.monomial.exponents.resize(r.num_vars_, 0);
   r.normalize();
   return r;
 }
@@ -274,7 +277,9 @@ Polynomial Polynomial::operator*(const Polynomial& o) const {
   for (const auto& a : terms_)
     for (const auto& b : o.terms_) {
       Monomial m{std::vector<std::uint32_t>(r.num_vars_, 0)};
-      for (int v = 0; v < r.num_vars_; ++v) m.exponents[v] = a.monomial.exponents[v] + b.monomial.exponents[v];
+      // Operands may have fewer variables than the result: missing exponents are 0.
+      for (std::size_t v = 0; v < a.monomial.exponents.size(); ++v) m.exponents[v] += a.monomial.exponents[v];
+      for (std::size_t v = 0; v < b.monomial.exponents.size(); ++v) m.exponents[v] += b.monomial.exponents[v];
       r.terms_.push_back(Term{a.coefficient * b.coefficient, std::move(m)});
     }
   r.normalize();

@@ -1,0 +1,83 @@
+// CGAL number types used inside exact/*.cpp. PRIVATE: include this only from exact/*.cpp,
+// never from a public header (CGAL headers are expensive to compile and must not leak into
+// consumers, see common build rules).
+//
+//  IA: CGAL::Interval_nt_advanced, interval arithmetic that assumes the rounding mode is upward.
+//  EX: CGAL::Mpzf, exact multiprecision dyadic numbers (m * 2^e): every double converts exactly
+//      and +, -, * are exact. No division: every formula of detail/kernels.hpp is division-free.
+#pragma once
+
+#include <CGAL/FPU.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
+#include <gmpxx.h>
+
+#include "exact/filter_stats.hpp"
+#include "exact/interval.hpp"
+
+namespace delcert::exact::detail {
+
+using IA = CGAL::Interval_nt_advanced;
+using EX = CGAL::Mpzf;
+
+// Sign of an interval's contents: -1, 0 or +1 when certain, kUndecided when it contains 0 and
+// another value. A point interval [0, 0] certifies an exact zero.
+inline constexpr int kUndecided = 2;
+inline int certain_sign(const IA& x) {
+  if (x.inf() > 0) return 1;
+  if (x.sup() < 0) return -1;
+  if (x.inf() == 0 && x.sup() == 0) return 0;
+  return kUndecided;  // also for NaN bounds
+}
+
+inline int exact_sign(const EX& x) { return static_cast<int>(x.sign()); }
+
+inline IA to_ia(const Interval& x) { return IA(x.lo, x.hi); }
+inline Interval from_ia(const IA& x) { return {x.inf(), x.sup()}; }
+
+// Exact conversion of an integer to Mpzf. Do NOT use Mpzf's own mpz constructor: in CGAL 5.5
+// Mpzf(mpz_class) / Mpzf(Gmpz) drops the sign (init_from_mpz_t copies |z|) and mishandles 0
+// (mpz_scan1 of 0 is ~0). Convert |z| and negate instead.
+inline EX to_ex(const mpz_class& z) {
+  const int s = sgn(z);
+  if (s == 0) return EX(0);
+  mpz_class a = abs(z);
+  EX r(a);
+  return s < 0 ? EX(-r) : r;
+}
+
+// Enclosure of an exact value as a double interval (independent of the rounding mode).
+inline IA enclose_ex(const EX& x) {
+  auto p = x.to_interval();
+  return IA(p.first, p.second);
+}
+
+inline mpq_class to_mpq(const EX& x) { return static_cast<mpq_class>(x); }
+
+// Sets the rounding mode to upward for the scope unless it is already upward (then it costs
+// one read of the control register).
+class EnsureUpward {
+ public:
+  EnsureUpward() : saved_(CGAL::FPU_get_cw()), changed_(saved_ != CGAL_FE_UPWARD) {
+    if (changed_) CGAL::FPU_set_cw(CGAL_FE_UPWARD);
+  }
+  ~EnsureUpward() {
+    if (changed_) CGAL::FPU_set_cw(saved_);
+  }
+  EnsureUpward(const EnsureUpward&) = delete;
+  EnsureUpward& operator=(const EnsureUpward&) = delete;
+
+ private:
+  CGAL::FPU_CW_t saved_;
+  bool changed_;
+};
+
+// Bookkeeping helper: counts a call, and whether the exact path decided it.
+inline void count_result(FilterContext& ctx, PredicateKind kind, bool exact_path, int sign) {
+  auto& c = ctx.stats[kind];
+  ++c.calls;
+  if (exact_path) ++c.filter_failures;
+  if (sign == 0) ++c.zero_results;
+}
+
+}  // namespace delcert::exact::detail

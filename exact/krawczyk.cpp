@@ -1,0 +1,337 @@
+#include "exact/krawczyk.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "exact/detail/cgal_number_types.hpp"
+#include "exact/number_types.hpp"
+
+namespace delcert::exact {
+
+using detail::IA;
+
+struct SquareSystem::Impl {
+  int n = 0;
+  std::vector<Polynomial> f;
+  std::vector<std::vector<Interval>> f_coef;  // enclosures of the coefficients
+  std::vector<Polynomial> df;                 // n x n row-major: d f_i / d x_j
+  std::vector<std::vector<Interval>> df_coef;
+};
+
+namespace {
+
+std::vector<Interval> coefficient_enclosures(const Polynomial& p) {
+  std::vector<Interval> out;
+  for (const auto& t : p.terms()) out.push_back(enclose(t.coefficient));
+  return out;
+}
+
+// Interval evaluation of p over the box x; the caller holds upward rounding.
+IA evaluate(const Polynomial& p, const std::vector<Interval>& coef, std::span<const IA> x) {
+  return p.evaluate_with<IA>(x, [&](std::size_t i) { return detail::to_ia(coef[i]); });
+}
+
+bool finite(const IA& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); }
+
+
+}  // namespace
+
+SquareSystem::SquareSystem(std::vector<Polynomial> equations) {
+  auto impl = std::make_shared<Impl>();
+  const int n = static_cast<int>(equations.size());
+  if (n < 1) throw std::invalid_argument("a square system needs at least one equation");
+  for (int i = 0; i < n; ++i)
+    if (equations[i].num_variables() != n && !equations[i].is_zero())
+      throw std::invalid_argument("square system: equation " + std::to_string(i + 1) + " has " +
+                                  std::to_string(equations[i].num_variables()) + " variables, expected " +
+                                  std::to_string(n) + " (as many as equations)");
+  impl->n = n;
+  impl->f = std::move(equations);
+  for (auto& p : impl->f) {
+    if (p.num_variables() != n) p = Polynomial(n);  // the zero polynomial, over n variables
+    impl->f_coef.push_back(coefficient_enclosures(p));
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      impl->df.push_back(impl->f[i].derivative(j));
+      impl->df_coef.push_back(coefficient_enclosures(impl->df.back()));
+    }
+  impl_ = std::move(impl);
+}
+
+int SquareSystem::size() const { return impl_->n; }
+const std::vector<Polynomial>& SquareSystem::equations() const { return impl_->f; }
+
+std::string_view to_string(RootStatus status) {
+  switch (status) {
+    case RootStatus::unique_root: return "unique_root";
+    case RootStatus::no_root: return "no_root";
+    case RootStatus::undecided: return "undecided";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// One Krawczyk operator evaluation K(X). Returns false when it cannot be evaluated (overflow,
+// singular midpoint Jacobian); then nothing is known.
+bool krawczyk_operator(const SquareSystem::Impl& S, const Box& X, Box& K) {
+  const int n = S.n;
+  std::vector<double> y(n);
+  std::vector<IA> xs(n), ys(n), fy(n), jx(static_cast<std::size_t>(n) * n);
+  Eigen::MatrixXd Jmid(n, n), Y(n, n);
+  // Midpoint, clamped into X whatever the rounding mode.
+  for (int i = 0; i < n; ++i) y[i] = std::clamp(X[i].lo + 0.5 * (X[i].hi - X[i].lo), X[i].lo, X[i].hi);
+  bool ok = true;
+  {
+    detail::EnsureUpward guard;
+    for (int i = 0; i < n; ++i) {
+      xs[i] = IA(X[i].lo, X[i].hi);
+      ys[i] = IA(y[i]);
+    }
+    for (int i = 0; i < n; ++i) {
+      fy[i] = evaluate(S.f[i], S.f_coef[i], std::span<const IA>(ys));
+      ok = ok && finite(fy[i]);
+    }
+    for (int i = 0; i < n * n; ++i) {
+      jx[i] = evaluate(S.df[i], S.df_coef[i], std::span<const IA>(xs));
+      ok = ok && finite(jx[i]);
+    }
+  }
+  if (!ok) return false;
+  // Preconditioner: inverse of the midpoint Jacobian, in ordinary floating point. Any matrix is
+  // correct here; a good one makes the tests succeed.
+  {
+    NearestRounding nearest;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(Jmid);
+    if (!lu.isInvertible()) return false;
+    Y = lu.inverse();
+    if (!Y.allFinite()) return false;
+  }
+  // K = y - Y F(y) + (I - Y J(X)) (X - y), all in interval arithmetic.
+  K.assign(n, Interval{});
+  detail::EnsureUpward guard;
+  for (int i = 0; i < n; ++i) {
+    IA acc = ys[i];
+    for (int j = 0; j < n; ++j) acc = acc - IA(Y(i, j)) * fy[j];
+    for (int j = 0; j < n; ++j) {
+      IA c = IA(i == j ? 1.0 : 0.0);
+      for (int l = 0; l < n; ++l) c = c - IA(Y(i, l)) * jx[l * n + j];
+      acc = acc + c * (xs[j] - ys[j]);
+    }
+    if (!finite(acc)) return false;
+    K[i] = detail::from_ia(acc);
+  }
+  return true;
+}
+
+bool strictly_inside(const Box& K, const Box& X) {
+  for (std::size_t i = 0; i < K.size(); ++i)
+    if (!(K[i].lo > X[i].lo && K[i].hi < X[i].hi)) return false;
+  return true;
+}
+
+bool box_inside(const Box& a, const Box& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!b[i].contains(a[i])) return false;
+  return true;
+}
+
+bool boxes_disjoint(const Box& a, const Box& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].hi < b[i].lo || b[i].hi < a[i].lo) return true;
+  return false;
+}
+
+// The full answer for one box, including a root verified in an enlarged box.
+struct Attempt {
+  RootStatus status = RootStatus::undecided;
+  Box box;         // as in KrawczykResult
+  int iterations = 0;
+  // When set: `region` contains exactly one root r of F, r lies in `root`, and every root of F in
+  // the input box lies in `region` (so the input box holds r or nothing). For unique_root,
+  // root == box and region is the box where the inclusion was proved.
+  std::optional<Box> root, region;
+};
+
+Attempt attempt(const SquareSystem::Impl& S, const Box& input, const KrawczykOptions& options) {
+  const int n = S.n;
+  if (static_cast<int>(input.size()) != n)
+    throw std::invalid_argument("box has dimension " + std::to_string(input.size()) + ", the system has " +
+                                std::to_string(n) + " unknowns");
+  for (const auto& i : input)
+    if (!i.is_finite() || !(i.lo <= i.hi)) throw std::invalid_argument("box intervals must be finite with lo <= hi");
+
+  Attempt a;
+  a.box = input;
+  Box& X = a.box;
+  Box K;
+  // Phase A: contraction X <- K(X) n X. Every root of F in X lies in K(X).
+  for (int it = 0; it < options.max_iterations; ++it) {
+    a.iterations = it + 1;
+    if (!krawczyk_operator(S, X, K)) break;
+    if (boxes_disjoint(K, X)) {
+      a.status = RootStatus::no_root;
+      a.box = input;
+      a.root.reset();
+      a.region.reset();
+      return a;
+    }
+    if (!a.root && strictly_inside(K, X)) {
+      a.region = X;  // exactly one root in X (Krawczyk), and it lies in K
+      a.root = K;
+    }
+    Box next(n);
+    for (int i = 0; i < n; ++i) next[i] = {std::max(K[i].lo, X[i].lo), std::min(K[i].hi, X[i].hi)};
+    double before = 0, after = 0;
+    for (int i = 0; i < n; ++i) {
+      before += X[i].width();
+      after += next[i].width();
+    }
+    X = next;
+    if (a.root) *a.root = X;  // the root stays in every contracted box
+    if (!(after < (1.0 - options.min_improvement) * before)) break;
+  }
+  if (a.root) {
+    a.status = RootStatus::unique_root;
+    return a;
+  }
+  // Phase B: epsilon-inflation around the contracted box (which holds every root of the input
+  // box). Contraction alone can shrink some coordinates to a few ulps, where strict inclusion is
+  // no longer provable, and a root on the input box's boundary is never strictly inside it.
+  Box B = X;
+  for (int step = 0; step < options.inflation_steps; ++step) {
+    {
+      NearestRounding nearest;
+      double scale = 0;
+      for (const auto& iv : B) scale = std::max({scale, std::abs(iv.lo), std::abs(iv.hi)});
+      if (scale == 0) scale = 1;
+      for (int i = 0; i < n; ++i) {
+        const double c = B[i].midpoint(), r = 0.5 * B[i].width() * 1.0625 + 0x1.0p-40 * scale;
+        // Keep B a superset of the contracted box X exactly.
+        B[i] = {std::min(c - r, X[i].lo), std::max(c + r, X[i].hi)};
+      }
+    }
+    if (!krawczyk_operator(S, B, K)) break;
+    if (strictly_inside(K, B)) {
+      a.root = K;
+      a.region = B;
+      if (box_inside(K, input)) {
+        a.status = RootStatus::unique_root;
+        a.box = K;
+      }
+      return a;
+    }
+    // Next candidate: the hull of K and X (K may have drifted).
+    for (int i = 0; i < n; ++i) B[i] = {std::min(K[i].lo, X[i].lo), std::max(K[i].hi, X[i].hi)};
+  }
+  return a;
+}
+
+}  // namespace
+
+KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options) {
+  Attempt a = attempt(system.impl(), box, options);
+  KrawczykResult r;
+  r.status = a.status;
+  r.box = std::move(a.box);
+  r.iterations = a.iterations;
+  return r;
+}
+
+RootSearchResult find_roots(const SquareSystem& system, const Box& region, const RootSearchOptions& options) {
+  RootSearchResult out;
+  struct Item {
+    Box box;
+    int depth;
+  };
+  struct Verified {
+    Box root, region;
+  };
+  std::vector<Verified> found;
+  std::vector<Box> ambiguous;
+  // Records a verified root, merging it with an equal one: if R' lies in B_i then r' = r_i
+  // (B_i holds exactly one root), and symmetrically. Disjoint R's are different roots.
+  auto record = [&](Box root, Box reg) {
+    for (auto& f : found) {
+      if (box_inside(root, f.region) || box_inside(f.root, reg)) {
+        for (std::size_t i = 0; i < root.size(); ++i)
+          f.root[i] = {std::max(f.root[i].lo, root[i].lo), std::min(f.root[i].hi, root[i].hi)};
+        return;
+      }
+      if (!boxes_disjoint(root, f.root)) {
+        ambiguous.push_back(std::move(root));  // cannot tell: keep it as undecided (still covered)
+        return;
+      }
+    }
+    found.push_back({std::move(root), std::move(reg)});
+  };
+  std::vector<Item> stack{{region, 0}};
+  // Off-centre split fraction: roots at dyadic "round" coordinates rarely land on a split plane.
+  constexpr double kSplit = 0.4921875 + 0.0009765625 * 0.3;
+  while (!stack.empty()) {
+    Item item = std::move(stack.back());
+    stack.pop_back();
+    if (out.boxes_examined >= options.max_boxes) {
+      out.undecided.push_back(std::move(item.box));
+      continue;
+    }
+    ++out.boxes_examined;
+    Attempt a = attempt(system.impl(), item.box, options.krawczyk);
+    if (a.status == RootStatus::no_root) continue;
+    if (a.root) {
+      // Every root of this box is the verified root (which may lie just outside the box).
+      record(std::move(*a.root), std::move(*a.region));
+      continue;
+    }
+    const Box& X = a.box;
+    int widest = 0;
+    for (int i = 1; i < static_cast<int>(X.size()); ++i)
+      if (X[i].width() > X[widest].width()) widest = i;
+    const Interval w = X[widest];
+    const double split = w.lo + kSplit * (w.hi - w.lo);
+    if (item.depth >= options.max_depth || w.width() <= options.min_width || !(w.lo < split && split < w.hi)) {
+      out.undecided.push_back(X);
+      continue;
+    }
+    Box lo = X, hi = X;
+    lo[widest].hi = split;
+    hi[widest].lo = split;
+    // Push the upper half first so the lower half is examined first (deterministic order).
+    stack.push_back({std::move(hi), item.depth + 1});
+    stack.push_back({std::move(lo), item.depth + 1});
+  }
+  for (auto& f : found) out.roots.push_back(std::move(f.root));
+  for (auto& b : ambiguous) out.undecided.push_back(std::move(b));
+  return out;
+}
+
+std::vector<Polynomial> equidistance_equations(std::span<const double* const> vertices, int N) {
+  if (vertices.empty()) throw std::invalid_argument("equidistance equations need at least one vertex");
+  std::vector<Polynomial> out;
+  const double* v0 = vertices[0];
+  mpq_class n0 = 0;
+  for (int k = 0; k < N; ++k) n0 += to_rational(v0[k]) * to_rational(v0[k]);
+  for (std::size_t i = 1; i < vertices.size(); ++i) {
+    const double* vi = vertices[i];
+    mpq_class ni = 0;
+    Polynomial p(N);
+    for (int k = 0; k < N; ++k) {
+      const mpq_class a = to_rational(vi[k]), b = to_rational(v0[k]);
+      ni += a * a;
+      if (a != b) p = p + Polynomial::variable(k, N).scaled(2 * (a - b));
+    }
+    p = p - Polynomial::constant(ni - n0, N);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace delcert::exact
