@@ -1,20 +1,41 @@
 // delcert-certify: the independent checker (DESIGN §1, §4, §5b).
-// Until the certifier lands it only prints its usage; every other invocation is a usage error.
+//
+//   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--claims CLAIMS.json]
+//                   [--out CERTIFICATE.json] [--threads T] [--no-times]
+//
+// Prints one line per check and, last, "verdict: CERTIFIED|REFUTED|UNDECIDED".
+// Exit status: 0 CERTIFIED, 1 REFUTED, 3 UNDECIDED, 2 bad input or usage (no certificate written).
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
+#include <thread>
+
+#include "certify/certify.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/spec.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"delcert-certify: exact certificates for Delaunay complexes of manifolds.\n"
+  using namespace delcert;
+  CLI::App app{"delcert-certify: exact certificates for tangential Delaunay complexes of manifolds.\n"
                "Verdict on the last line: CERTIFIED (exit 0), REFUTED (1), UNDECIDED (3); bad input or usage: 2."};
-  std::string manifold, points, complex, claims, out;
-  int threads = 1;
-  app.add_option("--manifold", manifold, "manifold spec file or builtin:NAME")->required();
-  app.add_option("--points", points, "point set (delcert-points v1, OFF, nOFF)")->required();
-  app.add_option("--complex", complex, "complex to verify (delcert-complex v1, OFF)");
-  app.add_option("--claims", claims, "claims.json written by a producer");
+  certify::CertifyOptions o;
+  std::string out;
+  bool no_times = false;
+  std::string builtins;
+  for (const auto& n : io::builtin_spec_names()) builtins += (builtins.empty() ? "" : ", ") + n;
+  app.add_option("--manifold", o.manifold, "manifold spec: a JSON file or builtin:NAME (" + builtins + ")")->required();
+  app.add_option("--points", o.points, "point set (delcert-points v1, OFF, nOFF)")->required();
+  app.add_option("--complex", o.complex,
+                 "complex to verify (delcert-complex v1, OFF); without it the tangential complex of the points is "
+                 "computed and audited");
+  app.add_option("--claims", o.claims, "claims.json (format delcert-claims v1: eps, sparsity, gamma0, power_protection)");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
-  app.add_option("--threads", threads, "worker threads");
+  app.add_option("--threads", o.threads, "worker threads (0: all cores); the certificate does not depend on it")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  app.add_flag("--no-times", no_times, "leave wall-clock times out of the certificate (byte-identical reruns)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -23,6 +44,24 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
-  std::cerr << "delcert-certify: the certifier is not implemented in this build; nothing was checked.\n";
-  return 2;
+  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  try {
+    certify::Certificate cert = certify::run_certify(o);
+    if (!out.empty()) io::write_file_atomically(out, cert.to_text(!no_times));
+    for (const auto& c : cert.checks)
+      std::printf("check %-2d %-22s %-10s %s\n", c.id, c.name.c_str(), certify::to_string(c.verdict), c.summary.c_str());
+    if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
+    certify::Verdict v = cert.overall();
+    std::printf("verdict: %s\n", certify::to_string(v));
+    std::fflush(stdout);
+    return v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;
+  } catch (const io::InputError& e) {
+    std::cerr << "delcert-certify: " << certify::with_line(e) << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    // Not bad input: an internal failure. Nothing was certified.
+    std::cerr << "delcert-certify: internal error: " << e.what() << "\n";
+    std::printf("verdict: UNDECIDED\n");
+    return 3;
+  }
 }

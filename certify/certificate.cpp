@@ -1,0 +1,125 @@
+#include "certify/certificate.hpp"
+
+#include "core/io/points.hpp"
+#include "exact/number_types.hpp"
+#include "exact/polynomial.hpp"
+
+namespace delcert::certify {
+
+using nlohmann::json;
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::certified: return "CERTIFIED";
+    case Verdict::refuted: return "REFUTED";
+    case Verdict::undecided: return "UNDECIDED";
+    case Verdict::report: return "REPORT";
+  }
+  return "?";
+}
+
+void CheckEntry::refute(std::string why) {
+  if (verdict == Verdict::report) return;
+  if (verdict != Verdict::refuted) details["reason"] = std::move(why);
+  verdict = Verdict::refuted;
+}
+
+void CheckEntry::undecide(std::string why) {
+  if (verdict == Verdict::report || verdict == Verdict::refuted) return;
+  if (verdict != Verdict::undecided) details["reason"] = std::move(why);
+  verdict = Verdict::undecided;
+}
+
+void CheckEntry::add_witness(json w, std::size_t cap) {
+  long total = details.value("witnesses_total", 0L) + 1;
+  details["witnesses_total"] = total;
+  if (witnesses.size() < cap) witnesses.push_back(std::move(w));
+}
+
+Verdict Certificate::overall() const {
+  bool undecided = false;
+  for (const auto& c : checks) {
+    if (c.verdict == Verdict::refuted) return Verdict::refuted;
+    undecided = undecided || c.verdict == Verdict::undecided;
+  }
+  return undecided ? Verdict::undecided : Verdict::certified;
+}
+
+json Certificate::to_json(bool with_times) const {
+  json j;
+  j["format"] = "delcert-certificate v1";
+  j["tool"] = {{"name", "delcert-certify"}, {"version", "0.1.0"}};
+  j["inputs"] = inputs;
+  j["conventions"] = conventions;
+  j["parameters"] = parameters;
+  json cs = json::array();
+  for (const auto& c : checks) {
+    json e;
+    e["id"] = c.id;
+    e["name"] = c.name;
+    e["verdict"] = to_string(c.verdict);
+    e["summary"] = c.summary;
+    e["claim"] = c.claim;
+    e["margin"] = c.margin;
+    e["witnesses"] = c.witnesses;
+    e["details"] = c.details;
+    cs.push_back(std::move(e));
+  }
+  j["checks"] = cs;
+  json f = json::object();
+  for (int k = 0; k < exact::kNumPredicateKinds; ++k) {
+    const auto& c = filter.counters[k];
+    if (!c.calls) continue;
+    f[std::string(exact::predicate_name(static_cast<exact::PredicateKind>(k)))] = {
+        {"calls", c.calls}, {"exact_fallbacks", c.filter_failures}, {"exact_zeros", c.zero_results}};
+  }
+  std::uint64_t calls = filter.total_calls(), fails = filter.total_failures();
+  j["filter"] = {{"predicates", f},
+                 {"calls", calls},
+                 {"decided_by_interval_filter", calls - fails},
+                 {"exact_fallbacks", fails},
+                 {"fraction_decided_by_filter", calls ? num(double(calls - fails) / double(calls)) : "1"}};
+  if (with_times) {
+    json t = json::object();
+    for (const auto& [k, v] : times) t[k] = v;
+    j["times_seconds"] = t;
+  }
+  j["verdict"] = to_string(overall());
+  return j;
+}
+
+std::string Certificate::to_text(bool with_times) const {
+  using ojson = nlohmann::ordered_json;
+  json j = to_json(with_times);
+  auto O = [](const json& v) { return ojson::parse(v.dump()); };
+  ojson o;
+  for (const char* k : {"format", "tool", "verdict", "inputs", "conventions", "parameters"}) o[k] = O(j[k]);
+  ojson cs = ojson::array();
+  for (const auto& c : j["checks"]) {
+    ojson e;
+    for (const char* k : {"id", "name", "verdict", "summary", "claim", "margin", "witnesses", "details"}) e[k] = O(c[k]);
+    cs.push_back(std::move(e));
+  }
+  o["checks"] = cs;
+  o["filter"] = O(j["filter"]);
+  if (with_times) o["times_seconds"] = O(j["times_seconds"]);
+  return o.dump(2) + "\n";
+}
+
+std::string num(double x) { return io::format_double(x == 0 ? 0.0 : x); }  // no "-0"
+
+json enclosure_json(const exact::Interval& iv) { return json::array({num(iv.lo), num(iv.hi)}); }
+
+json lower_bound_json(const exact::Interval& iv) {
+  return {{"certified_lower_bound", num(iv.lo)}, {"enclosure", enclosure_json(iv)}};
+}
+
+json rational_json(const mpq_class& q) {
+  std::string s = rational_to_string(q);
+  if (s.size() <= 40) return s;
+  return {{"enclosure", enclosure_json(exact::enclose(q))}};
+}
+
+json ints_json(const std::vector<int>& v) { return json(v); }
+
+}  // namespace delcert::certify

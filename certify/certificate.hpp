@@ -1,0 +1,67 @@
+// The certificate (DESIGN §5): input hashes, conventions, one entry per check, filter
+// statistics, times and the overall verdict, written as JSON ("delcert-certificate v1").
+// docs/certificate.md describes every field.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "exact/filter_stats.hpp"
+#include "exact/interval.hpp"
+
+namespace delcert::certify {
+
+// CERTIFIED: proven. REFUTED: proven false, with a witness. UNDECIDED: neither, with the reason.
+// REPORT: informational (measured values, theorem hypotheses); never changes the overall verdict.
+enum class Verdict { certified, refuted, undecided, report };
+const char* to_string(Verdict v);
+
+struct CheckEntry {
+  int id = 0;
+  std::string name;
+  Verdict verdict = Verdict::certified;
+  std::string summary;                                 // one human-readable line
+  nlohmann::json claim;                                // the claim decided, or null
+  nlohmann::json margin;                               // certified bounds, or null
+  nlohmann::json witnesses = nlohmann::json::array();  // small, re-checkable by hand
+  nlohmann::json details = nlohmann::json::object();
+
+  // Lowers the verdict: refuted beats undecided beats certified (report stays report).
+  void refute(std::string why);
+  void undecide(std::string why);
+  // Appends a witness while keeping the list short; the total is counted in details.
+  void add_witness(nlohmann::json w, std::size_t cap = 20);
+};
+
+struct Certificate {
+  nlohmann::json inputs = nlohmann::json::object();
+  nlohmann::json conventions = nlohmann::json::object();
+  nlohmann::json parameters = nlohmann::json::object();
+  std::vector<CheckEntry> checks;
+  exact::FilterStats filter;
+  std::vector<std::pair<std::string, double>> times;  // seconds, wall clock
+
+  // REFUTED if any check is refuted, else UNDECIDED if any is undecided, else CERTIFIED.
+  Verdict overall() const;
+  // `with_times = false` leaves the only non-deterministic field out (byte-identical reruns).
+  nlohmann::json to_json(bool with_times = true) const;
+  // The JSON text written by delcert-certify: fields in a fixed reading order, 2-space indent.
+  std::string to_text(bool with_times = true) const;
+};
+
+// JSON helpers shared by the checks. Doubles are printed with the shortest text that reads back
+// to the same double, so a printed bound is exactly the bound that was certified.
+std::string num(double x);
+nlohmann::json enclosure_json(const exact::Interval& iv);
+// {"certified_lower_bound": lo, "enclosure": [lo, hi]} for a certified quantity.
+nlohmann::json lower_bound_json(const exact::Interval& iv);
+// An exact rational: its text when short, else its enclosure.
+nlohmann::json rational_json(const mpq_class& q);
+nlohmann::json ints_json(const std::vector<int>& v);
+
+}  // namespace delcert::certify

@@ -1,0 +1,36 @@
+// claims.json: what a producer promises about its output (DESIGN §5b). Each claim becomes a
+// check in the certificate. Every value is an exact rational written as a JSON string
+// ("0.05", "1/20", "2.5e-3") or a JSON integer; JSON floating-point numbers are refused
+// because they are already rounded to binary.
+//
+//   {
+//     "format": "delcert-claims v1",
+//     "eps": "0.3",               // every star simplex has R_p(s) < eps          (a distance)
+//     "sparsity": "0.1",          // every two points are at distance > sparsity  (a distance)
+//     "gamma0": "0.05",           // every simplex of the complex is gamma0-good  (0 < gamma0 <= 1)
+//     "power_protection": "1e-4"  // every star simplex is power-protected by more than this
+//   }                             // (a SQUARED distance, the paper's delta-check^2)
+//
+// All four claims are optional; unknown keys are an error (so a typo cannot silently drop a claim).
+#pragma once
+
+#include <gmpxx.h>
+
+#include <optional>
+#include <string>
+
+namespace delcert::certify {
+
+struct Claims {
+  std::optional<mpq_class> eps;               // > 0
+  std::optional<mpq_class> sparsity;          // >= 0
+  std::optional<mpq_class> gamma0;            // in (0, 1]
+  std::optional<mpq_class> power_protection;  // >= 0, squared distance
+  bool any() const { return eps || sparsity || gamma0 || power_protection; }
+};
+
+// Throws io::InputError("file:line: ...") naming the offending key.
+Claims parse_claims(const std::string& json_text, const std::string& file);
+Claims read_claims(const std::string& path);
+
+}  // namespace delcert::certify

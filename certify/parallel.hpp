@@ -1,0 +1,42 @@
+// A deterministic parallel loop: indices [0, n) are cut into `threads` contiguous blocks, one
+// std::thread each. Results must be written to per-index slots so that the output does not
+// depend on the number of threads. The first exception (by smallest index) is rethrown.
+#pragma once
+
+#include <algorithm>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace delcert::certify {
+
+// f(i, worker) for every i in [0, n); worker in [0, threads) identifies per-thread state.
+template <class F>
+void parallel_for(std::size_t n, int threads, F&& f) {
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<std::size_t>(n, 1))));
+  std::vector<std::exception_ptr> errors(threads);
+  std::vector<std::size_t> error_index(threads, n);
+  auto work = [&](int t) {
+    std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+    for (std::size_t i = begin; i < end; ++i) {
+      try {
+        f(i, t);
+      } catch (...) {
+        errors[t] = std::current_exception();
+        error_index[t] = i;
+        return;
+      }
+    }
+  };
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back(work, t);
+    for (auto& th : pool) th.join();
+  }
+  for (int t = 0; t < threads; ++t)  // blocks are in index order: the first error is the smallest index
+    if (errors[t]) std::rethrow_exception(errors[t]);
+}
+
+}  // namespace delcert::certify

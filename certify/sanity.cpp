@@ -1,0 +1,215 @@
+#include "certify/sanity.hpp"
+
+#include <mpfr.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "certify/grid.hpp"
+#include "certify/parallel.hpp"
+#include "core/io/input_error.hpp"
+#include "exact/number_types.hpp"
+#include "exact/simplex_predicates.hpp"
+
+namespace delcert::certify {
+
+using nlohmann::json;
+
+std::vector<long> point_line_numbers(const std::string& text) {
+  // The same line rules as the readers: '#' starts a comment, blank lines are skipped.
+  std::vector<long> data;  // line numbers of non-empty lines
+  std::vector<std::size_t> tokens;
+  long number = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    ++number;
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      if (i < line.size()) ++count;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    }
+    if (count) data.push_back(number), tokens.push_back(count);
+  }
+  // Header lines before the first point: "delcert-points v1" + "DIM COUNT"; "OFF" [+ counts on
+  // the same line or the next]; "nOFF" + dimension + counts (possibly sharing lines).
+  std::size_t first = 0;
+  if (!data.empty()) {
+    std::string tag = text.substr(text.find_first_not_of(" \t\r\n"), 4);
+    if (tag.rfind("nOFF", 0) == 0) {
+      std::size_t need = 4, have = 0;  // tag, dim, NV, NF
+      while (first < data.size() && have < need) have += tokens[first++];
+    } else if (tag.rfind("OFF", 0) == 0) {
+      first = tokens[0] > 1 ? 1 : 2;
+    } else {
+      first = 2;
+    }
+  }
+  return {data.begin() + static_cast<long>(std::min(first, data.size())), data.end()};
+}
+
+namespace {
+
+// Rank of a small exact matrix (rows x cols, row-major) by Gaussian elimination over Q.
+int exact_rank(std::vector<mpq_class> a, int rows, int cols) {
+  int rank = 0;
+  for (int c = 0; c < cols && rank < rows; ++c) {
+    int piv = -1;
+    for (int r = rank; r < rows; ++r)
+      if (sgn(a[r * cols + c]) != 0) piv = r;
+    if (piv < 0) continue;
+    for (int k = 0; k < cols; ++k) std::swap(a[piv * cols + k], a[rank * cols + k]);
+    for (int r = rank + 1; r < rows; ++r) {
+      if (sgn(a[r * cols + c]) == 0) continue;
+      mpq_class f = a[r * cols + c] / a[rank * cols + c];
+      for (int k = c; k < cols; ++k) a[r * cols + k] -= f * a[rank * cols + k];
+    }
+    ++rank;
+  }
+  return rank;
+}
+
+exact::Interval sqrt_enclosure(const mpq_class& q) {
+  mpfr_t x;
+  mpfr_init2(x, 53);
+  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDD);
+  mpfr_sqrt(x, x, MPFR_RNDD);
+  double lo = mpfr_get_d(x, MPFR_RNDD);
+  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDU);
+  mpfr_sqrt(x, x, MPFR_RNDU);
+  double hi = mpfr_get_d(x, MPFR_RNDU);
+  mpfr_clear(x);
+  return {lo, hi};
+}
+
+}  // namespace
+
+CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
+                              const std::string& file, int threads) {
+  const int N = spec.ambient_dimension, m = spec.intrinsic_dimension, k = N - m;
+  const std::size_t n = points.size();
+  std::vector<std::vector<Polynomial>> jac(k);
+  for (int i = 0; i < k; ++i)
+    for (int v = 0; v < N; ++v) jac[i].push_back(spec.equations[i].derivative(v));
+  auto line_of = [&](std::size_t i) { return i < lines.size() ? lines[i] : 0L; };
+  std::vector<mpq_class> worst(n);  // max_i |F_i(p)| per point, exact
+  parallel_for(n, threads, [&](std::size_t idx, int) {
+    std::vector<mpq_class> x = exact::to_rational(points.point(idx));
+    for (int i = 0; i < k; ++i) {
+      mpq_class f = abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)));
+      if (f > spec.residual_tolerance)
+        throw io::InputError(file, line_of(idx),
+                             "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
+                                 "(p)| is about " + num(f.get_d()) + " > residual_tolerance " +
+                                 rational_to_string(spec.residual_tolerance) +
+                                 " (exactly); project the point onto M or raise residual_tolerance in the spec");
+      if (f > worst[idx]) worst[idx] = f;
+    }
+    if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(x))) <= 0)
+      throw io::InputError(file, line_of(idx),
+                           "point " + std::to_string(idx) + " lies on the wrong component: the selector " +
+                               spec.selector_text + " is not > 0 there");
+    std::vector<mpq_class> J(static_cast<std::size_t>(k) * N);
+    for (int i = 0; i < k; ++i)
+      for (int v = 0; v < N; ++v) J[i * N + v] = jac[i][v].evaluate(std::span<const mpq_class>(x));
+    if (exact_rank(std::move(J), k, N) != k)
+      throw io::InputError(file, line_of(idx),
+                           "the Jacobian of F is rank-deficient at point " + std::to_string(idx) +
+                               ", so its tangent space p + ker J_F(p) is not an m-flat; move the point");
+  });
+  CheckEntry e;
+  e.id = 1;
+  e.name = "input_sanity";
+  std::size_t arg = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (worst[i] > worst[arg]) arg = i;
+  mpq_class maxres = n ? worst[arg] : mpq_class(0);
+  e.summary = std::to_string(n) + " distinct points in R^" + std::to_string(N) + ", max |F_i(p)| <= " +
+              num(exact::enclose(maxres).hi) + " (tolerance " + rational_to_string(spec.residual_tolerance) + ")";
+  e.margin = {{"max_residual", {{"certified_upper_bound", num(exact::enclose(maxres).hi)},
+                                {"enclosure", enclosure_json(exact::enclose(maxres))}}},
+              {"at_point", n ? json(arg) : json(nullptr)}};
+  e.details = {{"points", n},
+               {"ambient_dimension", N},
+               {"intrinsic_dimension", m},
+               {"residual_tolerance", rational_to_string(spec.residual_tolerance)},
+               {"selector", spec.selector ? json(spec.selector_text) : json(nullptr)},
+               {"jacobian_full_rank_everywhere", true},
+               {"distinct", "bit-identical and numerically equal points are refused by the reader (exit 2)"}};
+  return e;
+}
+
+SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid, const mpq_class* claim,
+                              exact::FilterContext& ctx) {
+  SparsityResult R;
+  CheckEntry& e = R.entry;
+  e.id = 2;
+  e.name = "sparsity";
+  const std::size_t n = points.size();
+  const int N = points.dimension;
+  if (n < 2) {
+    e.verdict = Verdict::report;
+    e.summary = "fewer than two points";
+    return R;
+  }
+  auto d2 = [&](std::size_t a, std::size_t b) {
+    double s = 0;
+    for (int k = 0; k < N; ++k) s += (points.point(a)[k] - points.point(b)[k]) * (points.point(a)[k] - points.point(b)[k]);
+    return s;
+  };
+  // 1. An approximate closest pair (any pair gives a valid upper bound).
+  double best = INFINITY;
+  std::size_t ba = 0, bb = 1;
+  for (double r = grid.spacing(); !(best < INFINITY); r *= 2) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j : grid.ball(points.point(i), r))
+        if (static_cast<std::size_t>(j) > i && d2(i, j) < best) best = d2(i, j), ba = i, bb = j;
+    if (r > grid.diameter()) break;
+  }
+  // 2. Every pair at exact squared distance <= D = |a - b|^2 is found by a query of radius
+  //    r >= sqrt(D) (sqrt(hi) is correctly rounded; the factor covers its rounding).
+  mpq_class D = exact::squared_distance_exact(points.point(ba).data(), points.point(bb).data(), N);
+  double r = std::sqrt(exact::enclose(D).hi) * (1 + 0x1p-50);
+  // Every pair with |p - q|^2 <= D, decided by exact/'s filtered predicate, is a candidate;
+  // their exact squared distances give the minimum.
+  R.min_squared = D, R.i = static_cast<int>(ba), R.j = static_cast<int>(bb);
+  exact::RationalConstant bound(D);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int j : grid.ball(points.point(i), r)) {
+      if (static_cast<std::size_t>(j) <= i) continue;
+      if (exact::compare_squared_distance(points.point(i).data(), points.point(j).data(), bound, N, ctx) > 0) continue;
+      mpq_class q = exact::squared_distance_exact(points.point(i).data(), points.point(j).data(), N);
+      if (q < R.min_squared || (q == R.min_squared && std::pair(int(i), j) < std::pair(R.i, R.j)))
+        R.min_squared = q, R.i = static_cast<int>(i), R.j = j;
+    }
+  exact::Interval dist = sqrt_enclosure(R.min_squared);
+  e.margin = {{"min_squared_distance", rational_json(R.min_squared)},
+              {"min_distance", lower_bound_json(dist)},
+              {"pair", {R.i, R.j}}};
+  e.summary = "min distance in [" + num(dist.lo) + ", " + num(dist.hi) + "] between points " + std::to_string(R.i) +
+              " and " + std::to_string(R.j);
+  if (!claim) {
+    e.verdict = Verdict::report;
+    e.summary += " (no sparsity claim)";
+  } else {
+    e.claim = {{"sparsity", rational_to_string(*claim)}, {"meaning", "every two points at distance > sparsity"}};
+    if (R.min_squared > *claim * *claim) {
+      e.summary += " > claimed " + rational_to_string(*claim);
+    } else {
+      e.refute("two points are not farther apart than the claimed sparsity");
+      e.add_witness({{"pair", {R.i, R.j}},
+                     {"squared_distance", rational_json(R.min_squared)},
+                     {"claim_squared", rational_json(*claim * *claim)},
+                     {"sign", "squared_distance - claim^2 <= 0"}});
+      e.summary += ": NOT > claimed " + rational_to_string(*claim);
+    }
+  }
+  return R;
+}
+
+}  // namespace delcert::certify

@@ -1,0 +1,901 @@
+#include "certify/star.hpp"
+
+#include <CGAL/Interval_nt.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <type_traits>
+
+#include "certify/grid.hpp"
+#include "exact/number_types.hpp"
+#include "exact/tangent_predicates.hpp"
+
+namespace delcert::certify {
+
+namespace {
+
+// Interval arithmetic for enclosures only (never for a decision: signs come from exact/).
+// Interval_nt_advanced assumes upward rounding, which analyse_star holds for its whole body.
+using IA = CGAL::Interval_nt_advanced;
+constexpr int kMaxM = exact::kMaxTangentDimension;
+constexpr int kMaxSecureNeighbourhood = 4000;  // points within 5 eps of p tested by check 7
+using List = std::array<int, kMaxM + 1>;  // local indices of a cell, [0] = p, the rest increasing
+
+IA ia(const exact::Interval& x) { return IA(x.lo, x.hi); }
+exact::Interval from(const IA& x) { return {x.inf(), x.sup()}; }
+const exact::Interval kUnknown{-INFINITY, INFINITY};
+
+// Determinant of a small n x n matrix (row-major, n <= 7) by Laplace expansion over column
+// subsets, memoised: ring operations only.
+template <class T>
+T det(const T* a, int n) {
+  std::array<T, 128> table;
+  table[0] = T(1);
+  for (unsigned mask = 1; mask < (1u << n); ++mask) {
+    int r = __builtin_popcount(mask);
+    const T* row = a + (n - r) * n;
+    T acc(0);
+    int pos = 0;
+    for (int j = 0; j < n; ++j)
+      if (mask >> j & 1) {
+        T t = row[j] * table[mask ^ (1u << j)];
+        if (pos++ % 2 == 0) acc = acc + t;
+        else acc = acc - t;
+      }
+    table[mask] = acc;
+  }
+  return table[(1u << n) - 1];
+}
+
+// The points tested at p: every point within distance `radius` of p (and possibly more).
+struct Local {
+  int m = 0, N = 0;
+  std::vector<int> global;  // local -> global, global[0] = p; the rest increasing
+  const io::PointSet* points = nullptr;
+  const exact::TangentSpace* space = nullptr;
+  mutable std::optional<exact::TangentChart> chart_;  // built on first use
+  std::vector<IA> rows;       // (m + 1) per local: b = U^T (x - p), s = |x - p|^2 (enclosures)
+  std::vector<double> drows;  // midpoints, for the floating-point gift-wrapping
+  std::vector<IA> gram;       // m x m enclosure of G = U^T U
+  double radius = 0;
+  bool all = false;
+
+  const IA* row(int l) const { return rows.data() + static_cast<std::size_t>(l) * (m + 1); }
+  const double* drow(int l) const { return drows.data() + static_cast<std::size_t>(l) * (m + 1); }
+  int size() const { return static_cast<int>(global.size()); }
+  const exact::TangentChart& chart() const {
+    if (!chart_) {
+      std::vector<const double*> ptrs;
+      for (std::size_t i = 1; i < global.size(); ++i) ptrs.push_back(points->point(global[i]).data());
+      chart_.emplace(*space, std::span<const double* const>(ptrs));
+    }
+    return *chart_;
+  }
+  int local_of(int g) const {
+    if (g == global[0]) return 0;
+    auto it = std::lower_bound(global.begin() + 1, global.end(), g);
+    return it != global.end() && *it == g ? static_cast<int>(it - global.begin()) : -1;
+  }
+};
+
+Local make_local(const StarSettings& S, const exact::TangentSpace& T, const std::vector<IA>& U, int p, double radius) {
+  const io::PointSet& P = *S.points;
+  std::vector<int> cand = S.grid->ball(P.point(p), radius);
+  std::vector<int> glob{p};
+  for (int g : cand)
+    if (g != p) glob.push_back(g);
+  Local L{S.m, P.dimension, std::move(glob), &P, &T, std::nullopt, {}, {}, {}, radius, false};
+  L.all = L.global.size() == P.size();
+  const int m = S.m, N = P.dimension;
+  L.rows.assign(L.global.size() * (m + 1), IA(0));
+  L.drows.assign(L.global.size() * (m + 1), 0);
+  for (std::size_t l = 1; l < L.global.size(); ++l) {
+    auto x = P.point(L.global[l]), pp = P.point(p);
+    IA* r = L.rows.data() + l * (m + 1);
+    for (int i = 0; i < N; ++i) {
+      IA d = IA(x[i]) - IA(pp[i]);
+      for (int a = 0; a < m; ++a) r[a] += U[i * m + a] * d;
+      r[m] += CGAL::square(d);
+    }
+    for (int a = 0; a <= m; ++a) L.drows[l * (m + 1) + a] = 0.5 * (r[a].inf() + r[a].sup());
+  }
+  L.gram.resize(m * m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) L.gram[a * m + b] = ia(exact::enclose(T.gram(a, b)));
+  return L;
+}
+
+// Enclosure of a cell's centre (y = 2z with c = p + U z) and R^2 = z^T G z from the interval rows:
+// B y = h with B the rows b(v_i), h_i = s(v_i), by Cramer's rule.
+struct CellBox {
+  bool ok = false;
+  std::array<IA, kMaxM> y{};
+  IA R2;
+};
+
+CellBox cell_box(const Local& L, const List& c) {
+  const int m = L.m;
+  CellBox box;
+  std::array<IA, kMaxM * kMaxM> B, Bj;
+  B.fill(IA(0));
+  Bj.fill(IA(0));
+  for (int i = 0; i < m; ++i)
+    for (int a = 0; a < m; ++a) B[i * m + a] = L.row(c[i + 1])[a];
+  IA d = det(B.data(), m);
+  if (d.inf() <= 0 && d.sup() >= 0) return box;
+  for (int j = 0; j < m; ++j) {
+    std::copy(B.begin(), B.begin() + m * m, Bj.begin());
+    for (int i = 0; i < m; ++i) Bj[i * m + j] = L.row(c[i + 1])[m];
+    box.y[j] = det(Bj.data(), m) / d;
+  }
+  IA R2(0);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) R2 += box.y[a] * L.gram[a * m + b] * box.y[b];
+  box.R2 = R2 / 4;
+  box.ok = std::isfinite(box.R2.sup()) && std::isfinite(box.R2.inf());
+  return box;
+}
+
+// |c - q|^2 - R^2 = s(q) - b(q).y
+IA power_box(const Local& L, const CellBox& box, int q) {
+  const IA* r = L.row(q);
+  IA v = r[L.m];
+  for (int a = 0; a < L.m; ++a) v -= r[a] * box.y[a];
+  return v;
+}
+
+Simplex to_global(const Local& L, const List& c) {
+  Simplex s;
+  for (int i = 0; i <= L.m; ++i) s.push_back(L.global[c[i]]);
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+List sorted_list(List c, int m) {  // insertion sort of c[1..m] (p stays first)
+  for (int i = 2; i <= m && i < kMaxM + 1; ++i)
+    for (int k = i; k > 1 && c[k - 1] > c[k]; --k) std::swap(c[k - 1], c[k]);
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kernels for gift-wrapping: floating point (fast, unverified) and exact (exact/ predicates).
+// ---------------------------------------------------------------------------------------------
+
+struct DoubleKernel {
+  const Local& L;
+  std::array<double, kMaxM> y{};
+  bool ok = false;
+  int orient(const List& c) const {
+    const int m = L.m;
+    double a[kMaxM * kMaxM];
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < m; ++k) a[i * m + k] = L.drow(c[i + 1])[k];
+    double d = det(a, m);
+    return (d > 0) - (d < 0);
+  }
+  void set_cell(const List& c) {
+    const int m = L.m;
+    double a[kMaxM * kMaxM], aj[kMaxM * kMaxM];
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < m; ++k) a[i * m + k] = L.drow(c[i + 1])[k];
+    double d = det(a, m);
+    ok = d != 0;
+    for (int j = 0; j < m && ok; ++j) {
+      std::copy(a, a + m * m, aj);
+      for (int i = 0; i < m; ++i) aj[i * m + j] = L.drow(c[i + 1])[m];
+      y[j] = det(aj, m) / d;
+    }
+  }
+  int power(int q) const {
+    if (!ok) return 0;
+    double v = L.drow(q)[L.m];
+    for (int a = 0; a < L.m; ++a) v -= L.drow(q)[a] * y[a];
+    return (v > 0) - (v < 0);
+  }
+};
+
+struct ExactKernel {
+  const Local& L;
+  exact::FilterContext& ctx;
+  std::optional<exact::TangentCell> cell;
+  int orient(const List& c) const { return L.chart().orientation(std::span<const int>(c.data(), L.m + 1), ctx); }
+  void set_cell(const List& c) { cell = L.chart().cell(std::span<const int>(c.data(), L.m + 1), ctx); }
+  int power(int q) const { return cell->power_sign(q, ctx); }
+};
+
+struct Wrap {
+  std::vector<List> cells;
+  bool open = false;          // a ridge with no point beyond it
+  bool inconsistent = false;  // a ridge in three cells, or too many cells
+  bool tie = false;           // a candidate exactly on a sphere while wrapping
+};
+
+// Gift-wrapping around p from `seed`, across every ridge {p} + (m - 1 link vertices).
+template <class Kernel>
+Wrap gift_wrap(Kernel& K, const Local& L, const List& seed) {
+  const int m = L.m;
+  Wrap W;
+  std::map<std::vector<int>, std::vector<int>> ridges;  // sorted link vertices -> cells
+  std::map<List, int> index;
+  auto ridge_of = [&](const List& c, int i) {
+    std::vector<int> r;
+    for (int k = 1; k <= m; ++k)
+      if (k != i) r.push_back(c[k]);
+    return r;
+  };
+  auto add = [&](const List& c) {
+    auto [it, inserted] = index.emplace(c, static_cast<int>(W.cells.size()));
+    if (inserted) {
+      W.cells.push_back(c);
+      for (int i = 1; i <= m; ++i) {
+        auto& v = ridges[ridge_of(c, i)];
+        v.push_back(it->second);
+        if (v.size() > 2) W.inconsistent = true;
+      }
+    }
+    return it->second;
+  };
+  add(sorted_list(seed, m));
+  for (std::size_t k = 0; k < W.cells.size() && !W.inconsistent; ++k) {
+    if (W.cells.size() > 20000) {
+      W.inconsistent = true;
+      break;
+    }
+    for (int i = 1; i <= m; ++i) {
+      const List c = W.cells[k];
+      if (ridges[ridge_of(c, i)].size() >= 2) continue;
+      const int o = K.orient(c);
+      int best = -1;
+      List cand = c;
+      for (int q = 1; q < L.size(); ++q) {
+        if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
+        cand[i] = q;
+        if (K.orient(cand) != -o) continue;  // not strictly beyond the ridge
+        if (best < 0) {
+          best = q;
+          K.set_cell(cand);
+          continue;
+        }
+        int s = K.power(q);
+        if (s == 0) W.tie = true;
+        if (s < 0) {
+          best = q;
+          K.set_cell(cand);
+        }
+      }
+      if (best < 0) {
+        W.open = true;
+        continue;
+      }
+      cand[i] = best;
+      add(sorted_list(cand, m));
+    }
+  }
+  return W;
+}
+
+// A vertex of the power cell {y : 2 b(q).y <= s(q)} of p by successive ray shooting: m steps,
+// each moving along a direction orthogonal to the constraints already tight until a new one
+// becomes tight. Returns the cell {p} + tight constraints, or nothing if the cell is unbounded.
+template <class T, class Row>
+std::optional<List> power_cell_vertex(int m, int count, Row row) {
+  std::vector<std::vector<T>> R(count);
+  for (int q = 1; q < count; ++q) R[q] = row(q);  // m + 1 entries: b, s
+  std::vector<T> y(m, T(0));
+  std::vector<std::vector<T>> W;  // orthogonalised tight normals
+  List cell{};
+  auto dot = [&](const std::vector<T>& a, const std::vector<T>& b) {
+    T s(0);
+    for (int k = 0; k < m; ++k) s += a[k] * b[k];
+    return s;
+  };
+  auto orth = [&](std::vector<T> v) {
+    for (const auto& w : W) {
+      T f = dot(v, w) / dot(w, w);
+      for (int k = 0; k < m; ++k) v[k] -= f * w[k];
+    }
+    return v;
+  };
+  for (int step = 0; step < m; ++step) {
+    std::vector<T> d;
+    T best_norm(0);
+    for (int j = 0; j < m; ++j) {
+      std::vector<T> e(m, T(0));
+      e[j] = T(1);
+      e = orth(e);
+      T nn = dot(e, e);
+      if (nn > best_norm) best_norm = nn, d = e;
+    }
+    if (d.empty()) return std::nullopt;
+    bool found = false;
+    for (int sg : {1, -1}) {
+      int best = -1;
+      T bt(0);
+      for (int q = 1; q < count; ++q) {
+        if (std::find(cell.begin() + 1, cell.begin() + 1 + step, q) != cell.begin() + 1 + step) continue;
+        T dq = dot(R[q], d) * T(sg);
+        if (!(dq > T(0))) continue;
+        T slack = R[q][m] / T(2) - dot(R[q], y);
+        T t = slack / dq;
+        if (best < 0 || t < bt) best = q, bt = t;
+      }
+      if (best < 0) continue;
+      for (int k = 0; k < m; ++k) y[k] += T(sg) * bt * d[k];
+      cell[1 + step] = best;
+      W.push_back(orth(std::vector<T>(R[best].begin(), R[best].begin() + m)));
+      found = true;
+      break;
+    }
+    if (!found) return std::nullopt;
+  }
+  cell[0] = 0;
+  return sorted_list(cell, m);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Verification of a set of cells at p: (a) empty balls, margins, claims; (b) the link closes once.
+// ---------------------------------------------------------------------------------------------
+
+struct Verification {
+  std::vector<CellReport> cells;
+  bool link_ok = false;
+  std::string link_problem;
+  double need_radius = 0;  // the tested set must contain every point within this distance of p
+};
+
+std::string simplex_text(const Simplex& s) {
+  std::string t = "[";
+  for (std::size_t i = 0; i < s.size(); ++i) t += (i ? " " : "") + std::to_string(s[i]);
+  return t + "]";
+}
+
+// When every cell has a strictly empty ball (`proven_cells`), closure alone proves the star:
+// the cells are then cells of one triangulation (disjoint interiors), the link of an interior
+// vertex of a triangulation is strongly connected across ridges, so a ridge-closed subset of
+// star(p) is all of it (and p cannot be on the hull). Otherwise the orientation and degree tests
+// below explain what is wrong.
+bool check_link(const StarSettings& S, const Local& L, const std::vector<List>& cells, bool proven_cells,
+                std::string& problem, exact::FilterContext& ctx) {
+  const int m = L.m;
+  if (cells.empty()) {
+    problem = "no cell at p";
+    return false;
+  }
+  // Closure: every ridge in exactly two cells, on opposite sides. A ridge is keyed by its m - 1
+  // link vertices (p is in every ridge).
+  struct RidgeUse {
+    std::array<int, kMaxM> key;
+    int cell, pos;  // the cell and the position of the vertex opposite the ridge
+  };
+  std::vector<RidgeUse> uses;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    for (int i = 1; i <= m; ++i) {
+      RidgeUse u{{}, static_cast<int>(k), i};
+      u.key.fill(-1);
+      for (int t = 1, n = 0; t <= m; ++t)
+        if (t != i) u.key[n++] = cells[k][t];
+      uses.push_back(u);
+    }
+  std::sort(uses.begin(), uses.end(), [](const RidgeUse& a, const RidgeUse& b) { return a.key < b.key; });
+  for (std::size_t a = 0; a < uses.size();) {
+    std::size_t b = a;
+    while (b < uses.size() && uses[b].key == uses[a].key) ++b;
+    if (b - a != 2) {
+      Simplex g{L.global[0]};
+      for (int t = 0; t < m - 1; ++t) g.push_back(L.global[uses[a].key[t]]);
+      std::sort(g.begin(), g.end());
+      problem = "the ridge " + simplex_text(g) + " lies in " + std::to_string(b - a) +
+                " cell(s) at p instead of 2: the link of p does not close";
+      return false;
+    }
+    if (proven_cells) {
+      a = b;
+      continue;
+    }
+    const List& c0 = cells[uses[a].cell];
+    List c1 = c0;
+    c1[uses[a].pos] = cells[uses[a + 1].cell][uses[a + 1].pos];
+    if (L.chart().orientation(std::span<const int>(c1.data(), m + 1), ctx) !=
+        -L.chart().orientation(std::span<const int>(c0.data(), m + 1), ctx)) {
+      problem = "two cells at p sharing a ridge lie on the same side of it: they overlap in T_p";
+      return false;
+    }
+    a = b;
+  }
+  if (proven_cells) return true;
+  // Degree: a ray from p through an interior point x of the first cell's cone lies in exactly
+  // one cell's cone. x is a virtual point (any double point; only its projection matters).
+  std::vector<int> verts;
+  for (const auto& c : cells) verts.insert(verts.end(), c.begin() + 1, c.begin() + m + 1);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  const int N = L.N;
+  auto pp = S.points->point(L.global[0]);
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    std::vector<double> x(N);
+    double wsum = 1;
+    for (int k = 0; k < N; ++k) x[k] = pp[k];
+    for (int i = 1; i <= m; ++i) {
+      double w = 1 + attempt * i * 0.37;
+      wsum += w;
+      auto v = S.points->point(L.global[cells[0][i]]);
+      for (int k = 0; k < N; ++k) x[k] += w * v[k];
+    }
+    for (int k = 0; k < N; ++k) x[k] /= wsum;
+    std::vector<const double*> ptrs;
+    for (int l : verts) ptrs.push_back(S.points->point(L.global[l]).data());
+    ptrs.push_back(x.data());
+    exact::TangentChart small(L.chart().space(), std::span<const double* const>(ptrs));
+    const int xl = static_cast<int>(ptrs.size());
+    auto sl = [&](int l) { return 1 + static_cast<int>(std::lower_bound(verts.begin(), verts.end(), l) - verts.begin()); };
+    int count = 0;
+    bool ambiguous = false;
+    for (std::size_t k = 0; k < cells.size() && !ambiguous; ++k) {
+      List c{};
+      for (int i = 1; i <= m; ++i) c[i] = sl(cells[k][i]);
+      int o = small.orientation(std::span<const int>(c.data(), m + 1), ctx);
+      bool inside = true;
+      for (int i = 1; i <= m; ++i) {
+        List d = c;
+        d[i] = xl;
+        int s = small.orientation(std::span<const int>(d.data(), m + 1), ctx);
+        if (s == 0) ambiguous = true;
+        inside = inside && s == o;
+      }
+      if (k == 0 && !inside) ambiguous = true;  // x must lie inside the first cone
+      count += inside;
+    }
+    if (ambiguous) continue;
+    if (count != 1) {
+      problem = "the cells at p cover a neighbourhood of p " + std::to_string(count) + " times, not once";
+      return false;
+    }
+    return true;
+  }
+  problem = "could not place a generic ray from p (every attempt hit a cell boundary)";
+  return false;
+}
+
+// Tests one cell at p against every point of L: emptiness, ties, margin, claims. Raises
+// need_radius to the search radius this cell requires.
+CellReport test_list(const StarSettings& S, const Local& L, const List& c, double& need_radius, exact::FilterContext& ctx) {
+  const int m = L.m;
+  std::optional<exact::RationalConstant> prot, eps2;
+  if (S.power_protection) prot.emplace(*S.power_protection);
+  if (S.eps) eps2.emplace(mpq_class(*S.eps * *S.eps));
+  CellReport R;
+  R.simplex = to_global(L, c);
+  exact::TangentCell tc = L.chart().cell(std::span<const int>(c.data(), m + 1), ctx);
+  if (tc.degenerate()) {
+    R.degenerate = true;
+    return R;
+  }
+  CellBox box = cell_box(L, c);
+  // When the interval centre is too wide, enclose the exact values instead (slow, rare).
+  R.radius2 = box.ok ? from(box.R2) : exact::enclose(tc.squared_radius_exact());
+  // Radius the tested set must cover: 2R (emptiness), R + sqrt(R^2 + claim) (protection claim)
+  // and 2.25R (so that untested points have power > r^2 - 2rR >= 0.5 R^2, normally far above the
+  // tested minimum; it enters the reported lower bound otherwise).
+  IA Rr = CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi));
+  double need = (IA(2.25) * Rr).sup();
+  if (prot) need = std::max(need, (Rr + CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi) + ia(prot->enclosure()))).sup());
+  need_radius = std::max(need_radius, need);
+  exact::Interval margin{INFINITY, INFINITY};
+  for (int q = 1; q < L.size(); ++q) {
+    if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
+    int s = tc.power_sign(q, ctx);
+    exact::Interval pw = box.ok ? from(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
+    if (s < 0 && R.conflict < 0) R.conflict = L.global[q], R.conflict_power = pw;
+    if (s == 0 && R.tie < 0) R.tie = L.global[q];
+    if (pw.lo < margin.lo) margin.lo = pw.lo, R.margin_point = L.global[q];
+    margin.hi = std::min(margin.hi, pw.hi);
+    if (prot && R.protection_point < 0 && !(pw.lo > prot->enclosure().hi)) {
+      int t = tc.power_sign(q, *prot, ctx);
+      if (t <= 0) R.protection_point = L.global[q], R.protection_sign = t, R.protection_power = pw;
+    }
+  }
+  if (!L.all) {  // untested points are farther than r from p: power > r^2 - 2 r R
+    IA far = IA(L.radius) * IA(L.radius) - IA(2) * IA(L.radius) * Rr;
+    margin.lo = std::min(margin.lo, far.inf());
+  }
+  R.margin = margin;
+  if (eps2) {
+    if (R.radius2.hi < eps2->enclosure().lo) R.eps_sign = -1;
+    else if (R.radius2.lo > eps2->enclosure().hi) R.eps_sign = 1;
+    else R.eps_sign = sgn(tc.squared_radius_exact() - eps2->value());
+  }
+  return R;
+}
+
+Verification verify(const StarSettings& S, const Local& L, const std::vector<List>& cells, exact::FilterContext& ctx) {
+  Verification V;
+  bool any_degenerate = false;
+  for (const List& c : cells) {
+    V.cells.push_back(test_list(S, L, c, V.need_radius, ctx));
+    any_degenerate = any_degenerate || V.cells.back().degenerate;
+  }
+  const bool proven = std::all_of(V.cells.begin(), V.cells.end(), [](const CellReport& c) { return c.empty(); });
+  if (any_degenerate) V.link_problem = "a cell at p is degenerate in T_p (its projection is affinely dependent)";
+  else V.link_ok = check_link(S, L, cells, proven, V.link_problem, ctx);
+  return V;
+}
+
+bool all_empty(const Verification& V) {
+  return std::all_of(V.cells.begin(), V.cells.end(), [](const CellReport& c) { return c.empty(); });
+}
+
+}  // namespace
+
+StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>* claimed, exact::FilterContext& ctx) {
+  const io::PointSet& P = *S.points;
+  const int m = S.m, N = P.dimension;
+  StarReport out;
+  out.p = p;
+  exact::UpwardRounding upward;  // for the enclosures computed here
+  exact::TangentSpace T(*S.system, P.point(p));
+  std::vector<IA> U(N * m);
+  for (int i = 0; i < N; ++i)
+    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  auto dist = [&](int g) {
+    double s = 0;
+    for (int k = 0; k < N; ++k) s += (P.point(g)[k] - P.point(p)[k]) * (P.point(g)[k] - P.point(p)[k]);
+    return std::sqrt(s);
+  };
+  // A first guess; the verification proves whether it was large enough and grows it if not.
+  double r = 3 * S.grid->spacing();
+  if (claimed && !claimed->empty()) {
+    r = 0;
+    for (const auto& s : *claimed)
+      for (int v : s) r = std::max(r, 1.6 * dist(v));  // vertices are within 2R of p; 2.25R is needed
+  }
+  for (int iter = 0; iter < 64; ++iter) {
+    Local L = make_local(S, T, U, p, r);
+    out.search_radius = r;
+    out.searched_all = L.all;
+    auto grow = [&](double need) {
+      r = std::max(need * 1.0625, r * 1.25);
+      return !L.all;
+    };
+    std::optional<List> seed;
+    if (claimed) {
+      std::vector<List> lists;
+      bool missing_vertex = false;
+      for (const auto& s : *claimed) {
+        List c{};
+        int k = 1;
+        for (int v : s)
+          if (v != p) c[k++] = L.local_of(v), missing_vertex = missing_vertex || c[k - 1] < 0;
+        lists.push_back(sorted_list(c, m));
+      }
+      if (missing_vertex && grow(2 * r)) continue;  // cannot happen with r >= 1.6 |v - p|; kept as a guard
+      Verification V = verify(S, L, lists, ctx);
+      if (V.need_radius > r && grow(V.need_radius)) continue;
+      out.claimed = V.cells;
+      out.link_problem = V.link_problem;
+      if (all_empty(V) && V.link_ok) {
+        out.claimed_verified = true;
+        out.star = V.cells;
+        out.state = StarReport::State::proven;
+        return out;
+      }
+      for (std::size_t k = 0; k < lists.size() && !seed; ++k)
+        if (V.cells[k].empty()) seed = lists[k];  // a strictly empty ball: a true cell of star(p)
+    }
+    // Floating-point gift-wrapping, then exact verification.
+    if (!seed)
+      seed = power_cell_vertex<double>(m, L.size(), [&](int q) { return std::vector<double>(L.drow(q), L.drow(q) + m + 1); });
+    if (seed) {
+      DoubleKernel K{L};
+      Wrap W = gift_wrap(K, L, *seed);
+      if (W.open && !W.inconsistent && grow(2 * r)) continue;
+      if (!W.open && !W.inconsistent) {
+        Verification V = verify(S, L, W.cells, ctx);
+        if (V.need_radius > r && grow(V.need_radius)) continue;
+        if (all_empty(V) && V.link_ok) {
+          out.star = V.cells;
+          out.state = StarReport::State::proven;
+          return out;
+        }
+      }
+    }
+    // Exact gift-wrapping from an exact vertex of the power cell.
+    std::optional<List> exact_seed = power_cell_vertex<mpq_class>(m, L.size(), [&](int q) { return L.chart().row_exact(q); });
+    if (!exact_seed) {
+      if (grow(2 * r)) continue;
+      out.reason = "the power cell of p is unbounded even with every sample point: p has no complete star";
+      return out;
+    }
+    ExactKernel K{L, ctx, std::nullopt};
+    Wrap W = gift_wrap(K, L, *exact_seed);
+    if (W.open && !W.inconsistent && grow(2 * r)) continue;
+    std::vector<List> cells = W.cells;
+    Verification V = verify(S, L, cells, ctx);
+    if (V.need_radius > r && grow(V.need_radius)) continue;
+    out.star = V.cells;
+    bool ties = W.tie || std::any_of(V.cells.begin(), V.cells.end(), [](const CellReport& c) { return c.tie >= 0; });
+    if (all_empty(V) && V.link_ok && !W.open && !W.inconsistent) {
+      out.state = StarReport::State::proven;
+    } else if (ties) {
+      out.state = StarReport::State::degenerate;
+      out.reason = "exactly degenerate: a sample point lies exactly on the sphere of a cell at p, so star(p) is not unique";
+    } else {
+      out.state = StarReport::State::incomplete;
+      out.reason = W.open ? "the star of p does not close even with every sample point"
+                          : (V.link_problem.empty() ? "exact gift-wrapping did not produce a star" : V.link_problem);
+    }
+    return out;
+  }
+  out.reason = "search radius did not converge";
+  return out;
+}
+
+CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::FilterContext& ctx) {
+  const io::PointSet& P = *S.points;
+  const int m = S.m, N = P.dimension;
+  exact::UpwardRounding upward;
+  exact::TangentSpace T(*S.system, P.point(p));
+  std::vector<IA> U(N * m);
+  for (int i = 0; i < N; ++i)
+    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  double r = 3 * S.grid->spacing();
+  for (int v : s) {
+    double d2 = 0;
+    for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
+    r = std::max(r, 2.5 * std::sqrt(d2));
+  }
+  for (;;) {
+    Local L = make_local(S, T, U, p, r);
+    List c{};
+    for (int i = 0, k = 1; i <= m; ++i)
+      if (s[i] != p) c[k++] = L.local_of(s[i]);
+    double need = 0;
+    CellReport R = test_list(S, L, sorted_list(c, m), need, ctx);
+    if (need <= r || L.all) return R;
+    r = std::max(need * 1.0625, r * 1.25);
+  }
+}
+
+namespace {
+
+// Three-valued comparison a > b: 1 certainly, 0 certainly not, -1 undecided (intervals only).
+int greater(const IA& a, const IA& b) {
+  if (a.inf() > b.sup()) return 1;
+  if (a.sup() <= b.inf()) return 0;
+  return -1;
+}
+int greater(const mpq_class& a, const mpq_class& b) { return a > b ? 1 : 0; }
+IA lower_max(const IA& a, const IA& b) { return IA(std::max(a.inf(), b.inf()), std::max(a.sup(), b.sup())); }
+mpq_class lower_max(const mpq_class& a, const mpq_class& b) { return a > b ? a : b; }
+
+// The conditions of Definition 3.1 for one cell, in number type T (IA: enclosures; mpq_class:
+// exact). rows: b(x) (m entries) per local point; t: |pi_p(x) - p|^2 = b^T G^-1 b per local
+// point. Returns "" when secure, else the first failed condition; `undecided` when an interval
+// comparison could not decide.
+template <class T>
+std::string secure_cell(const Local& L, const List& c, const std::vector<int>& by_t, const std::vector<T>& b, const std::vector<T>& t,
+                        const std::vector<T>& G, const std::vector<T>& Ginv, const T& eps2, const T& delta,
+                        const T& ups2, const T& short2, bool& undecided) {
+  const int m = L.m;
+  auto fail_or = [&](int g, const char* what) -> std::string {
+    if (g < 0) undecided = true;
+    return g == 1 ? what : "";
+  };
+  std::array<T, kMaxM * kMaxM> A, Aj;
+  A.fill(T(0));
+  Aj.fill(T(0));
+  for (int i = 0; i < m; ++i)
+    for (int a = 0; a < m; ++a) A[i * m + a] = b[c[i + 1] * m + a];
+  T d = det(A.data(), m);
+  if (greater(d, T(0)) != 1 && greater(T(0), d) != 1) {
+    if (greater(d, T(0)) == 0 && greater(T(0), d) == 0) return "degenerate projection";
+    undecided = true;
+    return "";
+  }
+  std::array<T, kMaxM> y;  // y = 2w, the projected circumcentre c' = p + U w
+  y.fill(T(0));
+  for (int j = 0; j < m; ++j) {
+    Aj = A;
+    for (int i = 0; i < m; ++i) Aj[i * m + j] = t[c[i + 1]];
+    y[j] = det(Aj.data(), m) / d;
+  }
+  T r2(0);
+  for (int a = 0; a < m; ++a)
+    for (int k = 0; k < m; ++k) r2 += y[a] * G[a * m + k] * y[k];
+  r2 = r2 / T(4);
+  std::string f;
+  if (!(f = fail_or(greater(r2, eps2) == 1 ? 1 : greater(eps2, r2) == 1 ? 0 : -1, "circumradius >= eps")).empty()) return f;
+  // Squared distances between the projected vertices (vertex 0 is p: b = 0, t = 0).
+  const int V = m + 1;
+  std::array<T, (kMaxM + 1) * (kMaxM + 1)> dm;
+  dm.fill(T(0));
+  auto inner = [&](int u, int v) {
+    T s(0);
+    for (int a = 0; a < m; ++a)
+      for (int k = 0; k < m; ++k) s += b[u * m + a] * Ginv[a * m + k] * b[v * m + k];
+    return s;
+  };
+  T longest(0);
+  int short_fail = 0;
+  for (int i = 0; i < V; ++i)
+    for (int j = i + 1; j < V; ++j) {
+      T dij = (i == 0) ? t[c[j]] : T(t[c[i]] + t[c[j]] - T(2) * inner(c[i], c[j]));
+      dm[i * V + j] = dm[j * V + i] = dij;
+      longest = lower_max(longest, dij);
+      int g = greater(short2, dij);
+      if (g == 1) short_fail = 1;
+      else if (g < 0 && short_fail == 0) short_fail = -1;
+    }
+  if (!(f = fail_or(short_fail, "shortest edge < mu0 eps")).empty()) return f;
+  // Thickness (paper §2.2) by Gram determinants: D(v_l)^2 = det G(s) / det G(facet_l), so
+  // Upsilon >= u  <=>  det(2G(s)) >= 2 u^2 m^2 Delta^2 det(2G(facet_l)) for every l.
+  auto gram_det = [&](const int* idx, int j) {  // idx: j + 1 vertex positions
+    if (j == 0) return T(1);
+    std::array<T, kMaxM * kMaxM> g;
+    g.fill(T(0));
+    for (int a = 0; a < j; ++a)
+      for (int k = 0; k < j; ++k)
+        g[a * j + k] = dm[idx[0] * V + idx[a + 1]] + dm[idx[0] * V + idx[k + 1]] - dm[idx[a + 1] * V + idx[k + 1]];
+    return det(g.data(), j);
+  };
+  std::array<int, kMaxM + 1> all;
+  for (int i = 0; i < V; ++i) all[i] = i;
+  T gt = gram_det(all.data(), m);
+  int thick_fail = 0;
+  for (int l = 0; l < V; ++l) {
+    std::array<int, kMaxM + 1> facet;
+    for (int i = 0, n = 0; i < V; ++i)
+      if (i != l) facet[n++] = i;
+    int g = greater(T(2) * ups2 * T(m * m) * longest * gram_det(facet.data(), m - 1), gt);
+    if (g == 1) thick_fail = 1;
+    else if (g < 0 && thick_fail == 0) thick_fail = -1;
+  }
+  if (!(f = fail_or(thick_fail, "thickness < upsilon0")).empty()) return f;
+  // delta-protection: |c' - q'| > r + delta  <=>  e = |c' - q'|^2 - r^2 - delta^2 > 0 and e^2 > 4 delta^2 r^2.
+  int prot_fail = 0;
+  IA reach2(INFINITY);  // points projected beyond 2r + delta from p are certainly protected
+  if constexpr (std::is_same_v<T, IA>) reach2 = CGAL::square(IA(2) * CGAL::sqrt(r2) + delta);
+  for (int k = 1; k < L.size(); ++k) {
+    const int q = by_t.empty() ? k : by_t[k - 1];
+    if (q < 0) break;  // end of the relevant points
+    if constexpr (std::is_same_v<T, IA>)  // |c' - q'| >= |q'| - r > r + delta; by_t is increasing
+      if (t[q].inf() > reach2.sup()) break;
+    if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
+    T e = t[q] - delta * delta;
+    for (int a = 0; a < m; ++a) e -= b[q * m + a] * y[a];
+    int g1 = greater(e, T(0));
+    int g2 = g1 == 1 ? greater(e * e, T(4) * delta * delta * r2) : g1;
+    if (g1 == 0 || g2 == 0) return "not delta-protected (point " + std::to_string(L.global[q]) + ")";
+    if (g1 < 0 || g2 < 0) prot_fail = -1;
+  }
+  if (prot_fail < 0) undecided = true;
+  return "";
+}
+
+std::vector<mpq_class> inverse(std::vector<mpq_class> A, int n) {
+  std::vector<mpq_class> X(n * n, mpq_class(0));
+  for (int i = 0; i < n; ++i) X[i * n + i] = 1;
+  for (int c = 0; c < n; ++c) {
+    int piv = c;
+    while (A[piv * n + c] == 0) ++piv;  // G is positive definite: a pivot exists
+    for (int j = 0; j < n; ++j) std::swap(A[c * n + j], A[piv * n + j]), std::swap(X[c * n + j], X[piv * n + j]);
+    mpq_class inv = 1 / A[c * n + c];
+    for (int j = 0; j < n; ++j) A[c * n + j] *= inv, X[c * n + j] *= inv;
+    for (int i = 0; i < n; ++i) {
+      if (i == c || A[i * n + c] == 0) continue;
+      mpq_class f = A[i * n + c];
+      for (int j = 0; j < n; ++j) A[i * n + j] -= f * A[c * n + j], X[i * n + j] -= f * X[c * n + j];
+    }
+  }
+  return X;
+}
+
+}  // namespace
+
+void SecureParams::prepare() {
+  eps2_enclosure = exact::enclose(eps * eps);
+  delta_enclosure = exact::enclose(delta);
+  upsilon0_2_enclosure = exact::enclose(upsilon0 * upsilon0);
+  shortest2_enclosure = exact::enclose(shortest * shortest);
+}
+
+SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simplex>& star, const SecureParams& sp,
+                            exact::FilterContext&) {
+  const io::PointSet& P = *S.points;
+  const int m = S.m, N = P.dimension;
+  SecureReport out;
+  if (star.empty()) return out;
+  exact::UpwardRounding upward;
+  exact::TangentSpace T(*S.system, P.point(p));
+  std::vector<IA> U(N * m);
+  for (int i = 0; i < N; ++i)
+    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  // The points of W = B(p, 5 eps): a superset from the grid (testing more points is stricter),
+  // grown if needed to contain the cells' vertices.
+  double r = 5 * exact::enclose(sp.eps).hi;
+  for (const auto& s : star)
+    for (int v : s) {
+      double d2 = 0;
+      for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
+      r = std::max(r, std::sqrt(d2) * 1.0625);
+    }
+  Local L = make_local(S, T, U, p, r);
+  if (L.size() > kMaxSecureNeighbourhood) {  // an informational check: bounded work per point
+    out.undecided = static_cast<long>(star.size());
+    return out;
+  }
+  std::vector<mpq_class> Gq(m * m), Giq;  // exact G = U^T U; its exact inverse only when needed
+  for (int a = 0; a < m; ++a)
+    for (int k = 0; k < m; ++k) Gq[a * m + k] = T.gram(a, k);
+  std::vector<IA> G(L.gram), Gi(m * m);
+  {  // enclosure of G^-1 by the adjugate: (G^-1)_ak = (-1)^(a+k) det(G without row k, column a) / det G
+    IA d = det(G.data(), m);
+    std::array<IA, kMaxM * kMaxM> minor;
+    for (int a = 0; a < m; ++a)
+      for (int k = 0; k < m; ++k) {
+        int n = 0;
+        for (int i = 0; i < m; ++i)
+          for (int j = 0; j < m; ++j)
+            if (i != k && j != a) minor[n++] = G[i * m + j];
+        IA mk = m == 1 ? IA(1) : det(minor.data(), m - 1);
+        Gi[a * m + k] = ((a + k) % 2 ? -mk : mk) / d;  // G is positive definite: d > 0
+      }
+  }
+  std::vector<IA> b(L.size() * m, IA(0));  // b(x) = U^T (x - p) per local point, row-major
+  std::vector<IA> t(L.size(), IA(0));
+  for (int l = 1; l < L.size(); ++l) {
+    for (int a = 0; a < m; ++a) b[l * m + a] = L.row(l)[a];
+    for (int a = 0; a < m; ++a)
+      for (int k = 0; k < m; ++k) t[l] += b[l * m + a] * Gi[a * m + k] * b[l * m + k];
+  }
+  // The local points that can matter for delta-protection, by increasing lower bound of their
+  // projected squared distance to p: a point projected farther than 2r + delta from p is
+  // protected for every cell (r < eps, so 2 eps + delta bounds every cell's reach).
+  const double reach_all = (CGAL::square(IA(2) * CGAL::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
+                                         IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)))
+                               .sup();
+  std::vector<int> by_t;
+  for (int l = 1; l < L.size(); ++l)
+    if (!(t[l].inf() > reach_all)) by_t.push_back(l);
+  std::sort(by_t.begin(), by_t.end(), [&](int a, int b2) { return t[a].inf() < t[b2].inf(); });
+  by_t.push_back(-1);  // end marker
+  const IA eps2 = ia(sp.eps2_enclosure), delta = ia(sp.delta_enclosure), ups2 = ia(sp.upsilon0_2_enclosure),
+           short2 = ia(sp.shortest2_enclosure);
+  std::vector<mpq_class> bq;  // exact rows, filled on first need
+  std::vector<mpq_class> tq;
+  for (const auto& s : star) {
+    List c{};
+    for (int i = 0, k = 1; i <= m; ++i)
+      if (s[i] != p) c[k++] = L.local_of(s[i]);
+    bool undecided = false;
+    std::string why = secure_cell<IA>(L, c, by_t, b, t, G, Gi, eps2, delta, ups2, short2, undecided);
+    if (undecided) {  // decide exactly
+      ++out.exact_fallbacks;
+      if (bq.empty()) {
+        Giq = inverse(Gq, m);
+        bq.assign(L.size() * m, mpq_class(0));
+        tq.assign(L.size(), mpq_class(0));
+        for (int l = 1; l < L.size(); ++l) {
+          auto row = L.chart().row_exact(l);
+          for (int a = 0; a < m; ++a) bq[l * m + a] = row[a];
+          for (int a = 0; a < m; ++a)
+            for (int k = 0; k < m; ++k) tq[l] += bq[l * m + a] * Giq[a * m + k] * bq[l * m + k];
+        }
+      }
+      undecided = false;
+      why = secure_cell<mpq_class>(L, c, {}, bq, tq, Gq, Giq, sp.eps * sp.eps, sp.delta, sp.upsilon0 * sp.upsilon0,
+                                   sp.shortest * sp.shortest, undecided);
+    }
+    if (why.empty()) {
+      ++out.secure;
+    } else {
+      ++out.insecure;
+      if (out.failures.size() < 5) out.failures.emplace_back(s, why);
+    }
+  }
+  return out;
+}
+
+}  // namespace delcert::certify

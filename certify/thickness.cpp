@@ -1,0 +1,183 @@
+#include "certify/thickness.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "certify/parallel.hpp"
+#include "certify/topology.hpp"
+#include "exact/number_types.hpp"
+#include "exact/polynomial.hpp"
+#include "exact/simplex_predicates.hpp"
+
+namespace delcert::certify {
+
+using nlohmann::json;
+
+namespace {
+
+// Floating-point Upsilon^2 of a j-simplex (a guess that only selects which face to certify).
+double approx_thickness2(const io::PointSet& P, const int* v, int j) {
+  const int N = P.dimension, V = j + 1;
+  std::vector<double> d(V * V, 0);
+  double longest = 0;
+  for (int a = 0; a < V; ++a)
+    for (int b = a + 1; b < V; ++b) {
+      double s = 0;
+      for (int k = 0; k < N; ++k) s += (P.point(v[a])[k] - P.point(v[b])[k]) * (P.point(v[a])[k] - P.point(v[b])[k]);
+      d[a * V + b] = d[b * V + a] = s;
+      longest = std::max(longest, s);
+    }
+  auto gram = [&](const std::vector<int>& idx) {
+    const int n = static_cast<int>(idx.size()) - 1;
+    std::vector<double> g(n * n);
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) g[a * n + b] = 0.5 * (d[idx[0] * V + idx[a + 1]] + d[idx[0] * V + idx[b + 1]] - d[idx[a + 1] * V + idx[b + 1]]);
+    // Gaussian elimination with partial pivoting.
+    double det = 1;
+    for (int c = 0; c < n; ++c) {
+      int piv = c;
+      for (int r = c + 1; r < n; ++r)
+        if (std::abs(g[r * n + c]) > std::abs(g[piv * n + c])) piv = r;
+      if (g[piv * n + c] == 0) return 0.0;
+      if (piv != c) {
+        for (int k = 0; k < n; ++k) std::swap(g[c * n + k], g[piv * n + k]);
+        det = -det;
+      }
+      det *= g[c * n + c];
+      for (int r = c + 1; r < n; ++r) {
+        double f = g[r * n + c] / g[c * n + c];
+        for (int k = c; k < n; ++k) g[r * n + k] -= f * g[c * n + k];
+      }
+    }
+    return det;
+  };
+  std::vector<int> all(V);
+  for (int i = 0; i < V; ++i) all[i] = i;
+  double gt = gram(all), best = INFINITY;
+  for (int l = 0; l < V; ++l) {
+    std::vector<int> f;
+    for (int i = 0; i < V; ++i)
+      if (i != l) f.push_back(i);
+    double gf = gram(f);
+    best = std::min(best, gf > 0 ? gt / gf : 0.0);
+  }
+  return longest > 0 ? std::max(0.0, best) / (double(j) * j * longest) : 0.0;
+}
+
+std::vector<const double*> vertex_pointers(const io::PointSet& P, const int* v, int j) {
+  std::vector<const double*> out;
+  for (int i = 0; i <= j; ++i) out.push_back(P.point(v[i]).data());
+  return out;
+}
+
+}  // namespace
+
+ThicknessResult check_thickness(const io::PointSet& P, const io::Complex& K, int m, const mpq_class* gamma0, int threads,
+                                exact::FilterStats& stats) {
+  ThicknessResult R;
+  CheckEntry& e = R.entry;
+  e.id = 5;
+  e.name = "thickness";
+  const int N = P.dimension;
+  FaceLattice L = face_lattice(K.simplices);
+  std::vector<exact::FilterContext> ctx(std::max(1, threads));
+  json minima = json::object();
+  std::vector<std::vector<char>> thin(std::max(0, L.dimension + 1));  // per face: Upsilon < Gamma0^j
+  long thin_count = 0;
+  for (int j = 2; j <= L.dimension; ++j) {
+    const std::size_t n = L.count(j);
+    const int* faces = L.flat[j].data();
+    thin[j].assign(n, 0);
+    if (gamma0) {
+      mpq_class g2 = 1;
+      for (int k = 0; k < 2 * j; ++k) g2 *= *gamma0;  // Gamma0^(2j): Upsilon >= Gamma0^j, squared
+      exact::RationalConstant gc(g2);
+      parallel_for(n, threads, [&](std::size_t f, int t) {
+        auto v = vertex_pointers(P, faces + f * (j + 1), j);
+        thin[j][f] = exact::thickness_sign(v, N, gc, ctx[t]) < 0;
+      });
+      thin_count += std::count(thin[j].begin(), thin[j].end(), 1);
+    }
+    // Certified minimum: guess the thinnest face in floating point, take its exact Upsilon^2,
+    // and prove every face thicker than slightly less than that (one predicate per face).
+    std::vector<double> approx(n);
+    parallel_for(n, threads, [&](std::size_t f, int) { approx[f] = approx_thickness2(P, faces + f * (j + 1), j); });
+    std::size_t arg = std::min_element(approx.begin(), approx.end()) - approx.begin();
+    exact::Interval best{0, 0};
+    for (int round = 0; round < 8 && n; ++round) {
+      mpq_class exact2 = exact::thickness_squared_exact(vertex_pointers(P, faces + arg * (j + 1), j), N);
+      exact::Interval enc = exact::enclose(exact2);
+      double lo = enc.lo * (1 - 0x1p-20);  // a double: an exact rational threshold below Upsilon(arg)^2
+      exact::RationalConstant thr{exact::to_rational(lo)};
+      std::vector<char> below(n, 0);
+      parallel_for(n, threads, [&](std::size_t f, int t) {
+        if (f != arg) below[f] = exact::thickness_sign(vertex_pointers(P, faces + f * (j + 1), j), N, thr, ctx[t]) <= 0;
+      });
+      auto it = std::find(below.begin(), below.end(), 1);
+      best = {lo, enc.hi};
+      if (it == below.end() || lo <= 0) break;
+      arg = static_cast<std::size_t>(it - below.begin());  // a thinner face: certify from it
+      if (round == 7) best.lo = 0;                          // give up tightening: 0 is a valid bound
+    }
+    // Upsilon = sqrt of Upsilon^2: bounds rounded outward.
+    exact::Interval ups{best.lo > 0 ? std::nextafter(std::sqrt(best.lo), 0.0) : 0.0, std::nextafter(std::sqrt(best.hi), INFINITY)};
+    std::vector<int> face(faces + arg * (j + 1), faces + arg * (j + 1) + j + 1);
+    if (n) minima[std::to_string(j)] = {{"min_thickness", lower_bound_json(ups)}, {"simplex", face}, {"faces", n}};
+    if (j == m && n) R.min_top = ups;
+  }
+  e.margin = minima;
+  e.details["edges_have_thickness_1"] = true;
+  std::string mins = R.min_top.lo >= 0 ? "min Upsilon of m-simplices in [" + num(R.min_top.lo) + ", " + num(R.min_top.hi) + "]"
+                                        : "no m-simplex";
+  for (auto& c : ctx) stats.merge(c.stats);
+  if (!gamma0) {
+    e.verdict = Verdict::report;
+    e.summary = mins + " (no gamma0 claim)";
+    return R;
+  }
+  e.claim = {{"gamma0", rational_to_string(*gamma0)},
+             {"meaning", "every j-face t of every simplex has Upsilon(t) >= gamma0^j (gamma0-good)"}};
+  // Flakes: thin faces whose proper faces (of dimension >= 2) are all thick enough.
+  long flakes = 0;
+  json flake_examples = json::array();
+  for (int j = 2; j <= L.dimension; ++j)
+    for (std::size_t f = 0; f < L.count(j); ++f) {
+      if (!thin[j][f]) continue;
+      const int* v = &L.flat[j][f * (j + 1)];
+      bool proper_good = true;
+      for (unsigned mask = 1; mask + 1 < (1u << (j + 1)) && proper_good; ++mask) {
+        int k = __builtin_popcount(mask) - 1;
+        if (k < 2) continue;
+        std::vector<int> sub;
+        for (int i = 0; i <= j; ++i)
+          if (mask >> i & 1) sub.push_back(v[i]);
+        proper_good = !thin[k][L.find(k, sub.data())];
+      }
+      std::vector<int> face(v, v + j + 1);
+      if (proper_good) {
+        ++flakes;
+        if (flake_examples.size() < 10) flake_examples.push_back(face);
+      }
+      exact::Interval u2 = exact::enclose(exact::thickness_squared_exact(vertex_pointers(P, v, j), N));
+      mpq_class g2 = 1;
+      for (int k = 0; k < 2 * j; ++k) g2 *= *gamma0;
+      e.add_witness({{"kind", "thin_face"},
+                     {"simplex", face},
+                     {"dimension", j},
+                     {"thickness_squared", enclosure_json(u2)},
+                     {"gamma0_power_2j", rational_json(g2)},
+                     {"exact_sign", "Upsilon^2 - gamma0^(2j) < 0"}});
+    }
+  e.details["thin_faces"] = thin_count;
+  e.details["flakes"] = flakes;
+  e.details["flake_examples"] = flake_examples;
+  if (thin_count) {
+    e.refute("a face is thinner than gamma0^j");
+    e.summary = std::to_string(thin_count) + " face(s) thinner than gamma0^j (" + std::to_string(flakes) + " flakes); " + mins;
+  } else {
+    e.summary = "every simplex is gamma0-good for gamma0 = " + rational_to_string(*gamma0) + "; " + mins;
+  }
+  return R;
+}
+
+}  // namespace delcert::certify

@@ -1,0 +1,108 @@
+// The delcert-certify binary: exit statuses, the final verdict line, atomic --out, and every
+// malformed input refused with exit status 2 and "file:line".
+#include <regex>
+
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+TEST(Cli, VerdictLineExitStatusAndCertificate) {
+  TempDir dir("cli");
+  const std::string oct = fixture("points/octahedron.off");
+  std::string out = dir.file("cert.json");
+  RunResult r = run(binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --complex " +
+                        q(fixture("certify/octahedron.complex")) + " --claims " +
+                        q(fixture("certify/octahedron-claims.json")) + " --out " + q(out) + " --threads 2",
+                    dir);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(last_line(r.out), "verdict: CERTIFIED");
+  auto j = nlohmann::json::parse(read_text(out));
+  EXPECT_EQ(j["format"], "delcert-certificate v1");
+  EXPECT_EQ(j["verdict"], "CERTIFIED");
+  EXPECT_EQ(j["checks"].size(), 10u);
+  EXPECT_EQ(j["inputs"]["points"]["sha256"].get<std::string>().size(), 64u);
+  EXPECT_TRUE(j.contains("times_seconds"));
+
+  r = run(binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --claims " +
+              q(fixture("certify/octahedron-claims-false.json")),
+          dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(last_line(r.out), "verdict: REFUTED");
+
+  r = run(binary() + " --manifold " + q(fixture("certify/sphere-4.json")) + " --points " +
+              q(fixture("certify/cross-polytope-5.txt")),
+          dir);
+  EXPECT_EQ(r.exit_code, 3) << r.out;
+  EXPECT_EQ(last_line(r.out), "verdict: UNDECIDED");
+
+  // Byte-identical reruns without times.
+  std::string a = dir.file("a.json"), b = dir.file("b.json");
+  run(binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --no-times --out " + q(a), dir);
+  run(binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --no-times --threads 3 --out " + q(b), dir);
+  EXPECT_EQ(read_text(a), read_text(b));
+  EXPECT_FALSE(read_text(a).empty());
+}
+
+TEST(Cli, UsageErrorsExit2) {
+  TempDir dir("usage");
+  EXPECT_EQ(run(binary(), dir).exit_code, 2);
+  EXPECT_EQ(run(binary() + " --manifold builtin:sphere-2", dir).exit_code, 2);
+  EXPECT_EQ(run(binary() + " --manifold builtin:sphere-2 --points x --bogus", dir).exit_code, 2);
+  EXPECT_EQ(run(binary() + " --help", dir).exit_code, 0);
+  RunResult r = run(binary() + " --manifold builtin:nowhere --points " + q(fixture("points/octahedron.off")), dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no built-in manifold"), std::string::npos) << r.err;
+}
+
+struct Bad {
+  std::string spec, points, complex, claims;
+  std::string file;  // the file the message must name, with a line number
+};
+
+TEST(Cli, MalformedInputExits2WithFileAndLine) {
+  TempDir dir("bad");
+  const std::string sphere = "builtin:sphere-2", tetra = fixture("certify/tetra-points.txt"),
+                    oct = fixture("points/octahedron.off");
+  std::vector<Bad> cases;
+  for (const char* f : {"points-count-extra.txt", "points-count-short.txt", "points-dimension-4.txt", "points-duplicate.txt",
+                        "points-inf.txt", "points-malformed-number.txt", "points-nan.txt", "points-unknown-tag.txt",
+                        "points-unknown-version.txt", "points-wrong-dimension.txt"})
+    cases.push_back({sphere, fixture(std::string("bad/") + f), "", "", fixture(std::string("bad/") + f)});
+  for (const char* f : {"complex-count-mismatch.txt", "complex-duplicate-simplex.txt", "complex-negative-index.txt",
+                        "complex-off-quad.off", "complex-out-of-range.txt", "complex-repeated-index.txt",
+                        "complex-unknown-version.txt"})
+    cases.push_back({sphere, tetra, fixture(std::string("bad/") + f), "", fixture(std::string("bad/") + f)});
+  for (const char* f : {"spec-bad-polynomial.json", "spec-equation-count.json", "spec-float-literal.json",
+                        "spec-invalid-json.json", "spec-unknown-version.json"})
+    cases.push_back({fixture(std::string("bad/") + f), tetra, "", "", fixture(std::string("bad/") + f)});
+  cases.push_back({fixture("certify/spec-bad-field.json"), tetra, "", "", fixture("certify/spec-bad-field.json")});
+  for (const char* f : {"claims-float.json", "claims-unknown-key.json", "claims-version.json", "claims-negative.json",
+                        "claims-invalid.json"})
+    cases.push_back({sphere, oct, "", fixture(std::string("certify/") + f), fixture(std::string("certify/") + f)});
+  cases.push_back({sphere, fixture("certify/points-off-manifold.txt"), "", "", fixture("certify/points-off-manifold.txt")});
+  cases.push_back({"builtin:so3", fixture("certify/so3-wrong-component.txt"), "", "", fixture("certify/so3-wrong-component.txt")});
+  cases.push_back({sphere, oct, fixture("certify/octahedron-wrong-count.complex"), "", fixture("certify/octahedron-wrong-count.complex")});
+  cases.push_back({sphere, oct, fixture("certify/octahedron-moved.off"), "", fixture("certify/octahedron-moved.off")});
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    std::string out = dir.file("never.json");
+    std::string cmd = binary() + " --manifold " + q(c.spec) + " --points " + q(c.points) + " --out " + q(out);
+    if (!c.complex.empty()) cmd += " --complex " + q(c.complex);
+    if (!c.claims.empty()) cmd += " --claims " + q(c.claims);
+    RunResult r = run(cmd, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find(c.file + ":"), std::string::npos) << r.err;
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(r.err, m, std::regex(std::regex_replace(c.file, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+                                                       R"(:[0-9]+: )")))
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a certificate was written for bad input";
+    EXPECT_EQ(r.out.find("verdict:"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace delcert::certify::test

@@ -1,0 +1,103 @@
+// The certifier's own combinatorial topology against known answers.
+#include <gtest/gtest.h>
+
+#include "certify/topology.hpp"
+
+namespace delcert::certify {
+namespace {
+
+using Simplices = std::vector<std::vector<int>>;
+
+const Simplices kOctahedron = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+// The 6-vertex real projective plane.
+const Simplices kRP2 = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1},
+                        {1, 2, 4}, {2, 3, 5}, {3, 4, 1}, {4, 5, 2}, {5, 1, 3}};
+
+// A k x k grid torus, each square split by a diagonal.
+Simplices grid_torus(int k) {
+  Simplices out;
+  auto v = [&](int i, int j) { return ((i + k) % k) * k + (j + k) % k; };
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      out.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      out.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  return out;
+}
+
+// The boundary of the (d+1)-simplex: a d-sphere.
+Simplices simplex_boundary(int d) {
+  Simplices out;
+  for (int skip = 0; skip <= d + 1; ++skip) {
+    std::vector<int> s;
+    for (int v = 0; v <= d + 1; ++v)
+      if (v != skip) s.push_back(v);
+    out.push_back(s);
+  }
+  return out;
+}
+
+TEST(Topology, BettiNumbersKnownAnswers) {
+  auto betti = [](const Simplices& s, int p) { return betti_numbers(face_lattice(s), p); };
+  EXPECT_EQ(betti(kOctahedron, 2), (std::vector<long>{1, 0, 1}));
+  EXPECT_EQ(betti(kOctahedron, 3), (std::vector<long>{1, 0, 1}));
+  EXPECT_EQ(betti(grid_torus(4), 2), (std::vector<long>{1, 2, 1}));
+  EXPECT_EQ(betti(grid_torus(5), 3), (std::vector<long>{1, 2, 1}));
+  EXPECT_EQ(betti(kRP2, 2), (std::vector<long>{1, 1, 1}));  // torsion Z/2 shows over Z/2 only
+  EXPECT_EQ(betti(kRP2, 3), (std::vector<long>{1, 0, 0}));
+  EXPECT_EQ(betti(simplex_boundary(3), 2), (std::vector<long>{1, 0, 0, 1}));
+  EXPECT_EQ(betti(simplex_boundary(4), 3), (std::vector<long>{1, 0, 0, 0, 1}));
+  Simplices two = kOctahedron;  // two disjoint spheres
+  for (auto s : kOctahedron) {
+    for (int& v : s) v += 6;
+    two.push_back(s);
+  }
+  EXPECT_EQ(betti(two, 2), (std::vector<long>{2, 0, 2}));
+}
+
+TEST(Topology, SphereRecognition) {
+  std::string why;
+  EXPECT_EQ(is_sphere({{1}, {2}}, 0, &why), Tri::yes);
+  EXPECT_EQ(is_sphere({{1}, {2}, {3}}, 0, &why), Tri::no);
+  EXPECT_EQ(is_sphere({{0, 1}, {1, 2}, {2, 0}}, 1, &why), Tri::yes);
+  EXPECT_EQ(is_sphere({{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3}}, 1, &why), Tri::no);  // two cycles
+  EXPECT_EQ(is_sphere({{0, 1}, {1, 2}}, 1, &why), Tri::no);                                   // a path
+  EXPECT_EQ(is_sphere(kOctahedron, 2, &why), Tri::yes);
+  EXPECT_EQ(is_sphere(grid_torus(4), 2, &why), Tri::no);
+  EXPECT_NE(why.find("Euler"), std::string::npos) << why;
+  EXPECT_EQ(is_sphere(kRP2, 2, &why), Tri::no);
+  EXPECT_EQ(is_sphere(simplex_boundary(3), 3, &why), Tri::unknown);  // homology sphere only
+}
+
+TEST(Topology, ReportOnComplexes) {
+  io::Complex K{6, kOctahedron};
+  TopologyReport R = analyse_topology(K, 2);
+  EXPECT_TRUE(R.pure);
+  EXPECT_EQ(R.boundary_ridges + R.singular_ridges + R.bad_links + R.uncovered_vertices, 0);
+  EXPECT_EQ(R.euler, 2);
+  EXPECT_EQ(R.f, (std::vector<long>{6, 12, 8}));
+  EXPECT_EQ(R.strong_components, 1);
+
+  io::Complex missing{6, {kOctahedron.begin(), kOctahedron.end() - 1}};
+  R = analyse_topology(missing, 2);
+  EXPECT_EQ(R.boundary_ridges, 3);
+  EXPECT_GE(R.bad_links, 3);
+
+  io::Complex impure{7, kOctahedron};
+  impure.simplices.push_back({5, 6});
+  R = analyse_topology(impure, 2);
+  EXPECT_FALSE(R.pure);
+  EXPECT_EQ(R.impure_example, (std::vector<int>{5, 6}));
+
+  io::Complex torus{16, grid_torus(4)};
+  R = analyse_topology(torus, 2);
+  EXPECT_EQ(R.bad_links, 0);
+  EXPECT_EQ(R.euler, 0);
+  EXPECT_EQ(R.betti_z3, (std::vector<long>{1, 2, 1}));
+
+  io::Complex uncovered{7, kOctahedron};
+  EXPECT_EQ(analyse_topology(uncovered, 2).uncovered_vertices, 1);
+}
+
+}  // namespace
+}  // namespace delcert::certify
