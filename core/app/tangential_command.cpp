@@ -1,16 +1,192 @@
 // delcert tangential --manifold SPEC --points POINTS --out COMPLEX [--stats STATS.json] [--threads T]
-// (issue 4: not built yet; registered so that --help lists it and any use is a clear error.)
+//
+// Builds the tangential Delaunay complex of the points (DESIGN §2) with T_p = p + ker J_F(p),
+// writes the union of the stars (maximal simplices, sorted) and, on request, a JSON summary.
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "core/app/command.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/complex.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/points.hpp"
+#include "core/io/spec.hpp"
+#include "core/manifold/manifold.hpp"
+#include "core/tangential/complex_topology.hpp"
+#include "core/tangential/parallel.hpp"
+#include "core/tangential/tangential_complex.hpp"
 
 namespace delcert::app {
 
+namespace {
+
+struct TangentialArgs {
+  std::string manifold, points, out, stats;
+  int threads = 0;
+};
+
+// Inputs at least this large get a progress bar (when stderr is a terminal).
+constexpr std::size_t kProgressThreshold = 20000;
+
+class Stopwatch {
+ public:
+  double lap() {
+    auto now = std::chrono::steady_clock::now();
+    double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// Rejects points that are not on M (to the spec's residual tolerance) or not on the selected
+// component: their tangent flat would not mean anything.
+void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
+  const double tolerance = manifold.spec().residual_tolerance.get_d();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double r = manifold.residual(points.point(i));
+    if (!(r <= tolerance)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.3g exceeds the spec's residual_tolerance %.3g", r, tolerance);
+      throw io::InputError(path, 0,
+                           "point " + std::to_string(i) + " (0-based) is not on " + manifold.spec().name +
+                               ": max |F_i(p)| = " + buf + "; project the points onto M first");
+    }
+    if (!manifold.on_selected_component(points.point(i)))
+      throw io::InputError(path, 0,
+                           "point " + std::to_string(i) + " (0-based) is on the wrong component of " +
+                               manifold.spec().name + " (the spec's selector is not positive there)");
+  }
+}
+
+int run_tangential(const TangentialArgs& a) {
+  Stopwatch clock;
+  nlohmann::ordered_json times;
+  Manifold manifold(io::read_spec(a.manifold));
+  const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
+  if (m < 2 || m > 4)
+    throw io::InputError(manifold.spec().source, 0,
+                         "intrinsic dimension " + std::to_string(m) +
+                             ": the tangential complex is implemented for m = 2, 3 and 4");
+  io::PointReadOptions read_options;
+  read_options.expected_dimension = N;
+  io::PointSet points = io::read_points(a.points, read_options);
+  check_on_manifold(manifold, points, a.points);
+  times["read"] = clock.lap();
+
+  const int threads = tangential::resolve_threads(a.threads);
+  tangential::TangentPlanes planes;
+  try {
+    planes = tangential::compute_tangent_planes(manifold, points, threads);
+  } catch (const std::domain_error& e) {
+    throw io::InputError(a.points, 0, e.what());
+  }
+  times["tangent_planes"] = clock.lap();
+
+  tangential::StarOptions options;
+  options.threads = threads;
+  const bool show_progress = isatty(STDERR_FILENO) && points.size() >= kProgressThreshold;
+  int shown = -1;
+  if (show_progress)
+    options.progress = [&shown](std::size_t done, std::size_t total) {
+      const int percent = static_cast<int>(100 * done / std::max<std::size_t>(total, 1));
+      if (percent == shown) return;
+      shown = percent;
+      std::string bar(percent / 2, '#');
+      bar.resize(50, ' ');
+      std::fprintf(stderr, "\rstars [%s] %3d%%", bar.c_str(), percent);
+      std::fflush(stderr);
+    };
+  tangential::StarStats star_stats;
+  tangential::TangentialComplex complex;
+  try {
+    complex = tangential::TangentialComplex(points, planes, options, &star_stats);
+  } catch (const std::invalid_argument& e) {  // e.g. two identical points
+    throw io::InputError(a.points, 0, e.what());
+  }
+  if (show_progress) std::fprintf(stderr, "\n");
+  times["stars"] = clock.lap();
+
+  tangential::Assembly assembly = complex.assemble(threads);
+  times["assemble"] = clock.lap();
+  tangential::ComplexTopology topology = tangential::analyze_complex(assembly.complex);
+  times["analyze"] = clock.lap();
+
+  io::write_complex(a.out, assembly.complex);
+  times["write_complex"] = clock.lap();
+
+  const double max_radius = std::sqrt(star_stats.max_radius2);
+  const bool consistent = assembly.inconsistent.empty();
+  if (!a.stats.empty()) {
+    nlohmann::ordered_json j;
+    j["format"] = "delcert-tangential-stats v1";
+    j["manifold"] = manifold.spec().name;
+    j["points_file"] = a.points;
+    j["points"] = points.size();
+    j["intrinsic_dimension"] = m;
+    j["ambient_dimension"] = N;
+    j["threads"] = threads;
+    j["star_simplices"] = assembly.star_cells;
+    j["stars"] = {{"power_cell", star_stats.stars - star_stats.fallbacks},
+                  {"regular_triangulation_fallback", star_stats.fallbacks},
+                  {"not_closed", star_stats.open},
+                  {"neighbours_mean", points.size() ? double(star_stats.neighbours_total) / points.size() : 0.0},
+                  {"neighbours_max", star_stats.neighbours_max}};
+    j["maximal_simplices"] = {{"total", assembly.complex.simplices.size()},
+                              {"by_dimension", topology.maximal_by_dimension}};
+    j["faces_by_dimension"] = topology.faces_by_dimension;
+    j["euler_characteristic"] = topology.euler_characteristic;
+    if (manifold.spec().expected.euler_characteristic)
+      j["expected_euler_characteristic"] = *manifold.spec().expected.euler_characteristic;
+    j["consistent"] = consistent;
+    j["inconsistent_simplices"] = {{"count", assembly.inconsistent.size()}, {"simplices", assembly.inconsistent}};
+    j["pure"] = topology.pure;
+    j["pseudomanifold"] = topology.pseudomanifold;
+    j["ridges"] = {{"total", topology.ridges},
+                   {"in_one_simplex", topology.boundary_ridges},
+                   {"in_three_or_more", topology.singular_ridges}};
+    j["strongly_connected_components"] = topology.components;
+    j["max_radius"] = max_radius;
+    times["write_stats"] = clock.lap();
+    j["time_seconds"] = times;
+    io::write_file_atomically(a.stats, j.dump(2) + "\n");
+  }
+
+  std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), m, N);
+  std::printf("points             %zu\n", points.size());
+  std::printf("star simplices     %zu (%zu stars by the regular-triangulation fallback, %zu not closed)\n",
+              assembly.star_cells, star_stats.fallbacks, star_stats.open);
+  std::printf("maximal simplices  %zu -> %s\n", assembly.complex.simplices.size(), a.out.c_str());
+  std::printf("inconsistent       %zu\n", assembly.inconsistent.size());
+  std::printf("pseudomanifold     %s (pure: %s)\n", topology.pseudomanifold ? "yes" : "no", topology.pure ? "yes" : "no");
+  std::printf("Euler char.        %ld\n", topology.euler_characteristic);
+  std::printf("max R_p            %.6g\n", max_radius);
+  return kExitOk;
+}
+
+}  // namespace
+
 Command add_tangential_command(CLI::App& app) {
-  auto* sub = app.add_subcommand("tangential", "build the tangential Delaunay complex (not available yet)");
-  sub->allow_extras();
-  return {sub, [] () -> int { throw std::runtime_error("'delcert tangential' is not available in this build yet"); }};
+  auto args = std::make_shared<TangentialArgs>();
+  auto* sub = app.add_subcommand("tangential", "build the tangential Delaunay complex of a point set on M");
+  sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
+  sub->add_option("--points", args->points, "input points (delcert-points, OFF or nOFF), on M")->required();
+  sub->add_option("--out", args->out, "output complex: maximal simplices, sorted (written atomically)")->required();
+  sub->add_option("--stats", args->stats, "also write a JSON summary (counts, consistency, topology, timings)");
+  sub->add_option("--threads", args->threads, "worker threads (0: all cores); the output does not depend on it")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  return {sub, [args] { return run_tangential(*args); }};
 }
 
 }  // namespace delcert::app
