@@ -1,10 +1,24 @@
 #!/usr/bin/env bash
-# README command 1: install what is missing, build, and run the main job on the built-in default.
+# README command 1: install what is missing, build, and run the main job on the built-in default:
+# sample the Clifford torus T^2 in R^4, build its tangential Delaunay complex, refine it until it is
+# thick, protected and consistent, and certify the result independently.
+# Override with: DELCERT_MANIFOLD=builtin:sphere-3 DELCERT_EPS=0.4 bash scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh >/dev/null
+manifold=${DELCERT_MANIFOLD:-builtin:clifford-torus-2}
+eps=${DELCERT_EPS:-0.25}
 out=${DELCERT_DEMO_OUT:-demo-output}
 mkdir -p "$out"
-echo "== delcert sample --manifold builtin:clifford-torus-2 --eps 0.25 --seed 1"
-build/delcert sample --manifold builtin:clifford-torus-2 --eps 0.25 --seed 1 --out "$out/clifford-torus-2.points"
+run() { echo; echo "\$ $*"; "$@"; }
+run build/delcert sample --manifold "$manifold" --eps "$eps" --seed 1 --out "$out/net.txt"
+run build/delcert tangential --manifold "$manifold" --points "$out/net.txt" --out "$out/net-complex.txt" \
+    --stats "$out/net-stats.json"
+echo
+echo "# The unrefined complex is usually not consistent: the certifier says why (exit 1 = REFUTED)."
+run build/delcert-certify --manifold "$manifold" --points "$out/net.txt" --complex "$out/net-complex.txt" \
+    --out "$out/net-certificate.json" || true
+run build/delcert refine --manifold "$manifold" --points "$out/net.txt" --eps "$eps" --seed 1 --out "$out/refined"
+run build/delcert-certify --manifold "$manifold" --points "$out/refined/points.txt" \
+    --complex "$out/refined/complex.txt" --claims "$out/refined/claims.json" --out "$out/refined/certificate.json"

@@ -22,5 +22,6 @@ std::string manifold_option_help();
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);
+Command add_refine_command(CLI::App& app);
 
 }  // namespace delcert::app

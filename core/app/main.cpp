@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   using namespace delcert::app;
   CLI::App app{"delcert: tangential Delaunay complexes of manifolds, refined until they are provably correct."};
   app.require_subcommand(1);
-  std::vector<Command> commands{add_sample_command(app), add_tangential_command(app)};
+  std::vector<Command> commands{add_sample_command(app), add_tangential_command(app), add_refine_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,271 @@
+// The refiner against GUDHI's perturbation fix (DESIGN §7, issue 6), on the same starting points
+// and the same tangent planes.
+//
+// For each case (a manifold and a number of points, sampled uniformly with respect to volume by
+// the built-in parametrisation, seeded): the tangent planes from Manifold::frame, then
+//   delcert: refine (practical mode, default parameters) -> points added, time per rule, rounds,
+//            final inconsistent stars, minimum thickness and protection margin;
+//   GUDHI:   Tangential_complex with set_tangent_planes, compute_tangential_complex, then
+//            fix_inconsistencies_using_perturbation(max_perturb, time limit) -> inconsistent
+//            stars before and after, time.
+// Prints one JSON document on stdout.
+//
+//   bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120]
+//                [--max-perturb 0.01] [--seed 1] [--reps 1] [--no-gudhi] [--out-dir DIR]
+// With --reps R, delcert runs R times (the outputs are identical; the JSON gives the median
+// total time and every run's); GUDHI runs once (its time is set by the limit).
+//
+// GUDHI runs its parallel (TBB) mode, as in bench_tangential.cpp (bench/CMakeLists.txt links TBB).
+#ifndef GUDHI_USE_TBB
+#define GUDHI_USE_TBB
+#endif
+
+// GCC 12 false positives inside Eigen/CGAL/GUDHI headers (as in bench_tangential.cpp).
+#pragma GCC diagnostic ignored "-Warray-bounds"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <CGAL/Epick_d.h>
+#include <gudhi/Tangential_complex.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/points.hpp"
+#include "core/io/spec.hpp"
+#include "core/manifold/manifold.hpp"
+#include "core/refine/refine_output.hpp"
+#include "core/refine/refiner.hpp"
+#include "core/sampling/sampling.hpp"
+#include "core/tangential/tangent_planes.hpp"
+
+namespace {
+
+using json = nlohmann::ordered_json;
+using namespace delcert;
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+struct Case {
+  std::string manifold;  // built-in name
+  std::size_t count = 0;
+};
+
+std::string builtin_of(const std::string& shorthand) {
+  if (shorthand == "t3") return "clifford-torus-3";
+  if (shorthand == "t2") return "clifford-torus-2";
+  if (shorthand == "s2") return "sphere-2";
+  if (shorthand == "s3") return "sphere-3";
+  return shorthand;
+}
+
+std::vector<Case> parse_cases(const std::string& text) {
+  std::vector<Case> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    auto colon = item.find(':');
+    if (colon == std::string::npos) throw std::runtime_error("case '" + item + "': expected NAME:COUNT");
+    out.push_back({builtin_of(item.substr(0, colon)), std::stoul(item.substr(colon + 1))});
+  }
+  return out;
+}
+
+template <int M>
+json run_gudhi_m(const io::PointSet& ps, const tangential::TangentPlanes& planes, int threads, double max_perturb,
+                 double time_limit) {
+  using K = CGAL::Epick_d<CGAL::Dynamic_dimension_tag>;
+  using TC = Gudhi::tangential_complex::Tangential_complex<K, CGAL::Dimension_tag<M>, CGAL::Parallel_tag>;
+  const K k;
+  const int N = ps.dimension;
+  std::vector<K::Point_d> points;
+  typename TC::TS_container bases;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    auto p = ps.point(i);
+    points.push_back(k.construct_point_d_object()(N, p.begin(), p.end()));
+    std::vector<K::Vector_d> vectors;
+    auto b = planes.basis(i);
+    for (int j = 0; j < M; ++j) vectors.push_back(k.construct_vector_d_object()(N, b.begin() + j * N, b.begin() + (j + 1) * N));
+    bases.emplace_back(i, vectors);
+  }
+  json r;
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  r["parallel"] = "TBB, " + std::to_string(threads) + " threads";
+  auto t0 = std::chrono::steady_clock::now();
+  TC tc(points, M, k);
+  tc.set_tangent_planes(bases);
+  tc.compute_tangential_complex();
+  r["build_seconds"] = seconds_since(t0);
+  auto before = tc.number_of_inconsistent_simplices();
+  r["initial_inconsistent_stars"] = before.num_inconsistent_stars;
+  r["initial_inconsistent_simplices"] = before.num_inconsistent_simplices;
+  auto t1 = std::chrono::steady_clock::now();
+  auto info = tc.fix_inconsistencies_using_perturbation(max_perturb, time_limit);
+  r["fix_seconds"] = seconds_since(t1);
+  auto after = tc.number_of_inconsistent_simplices();
+  r["max_perturb"] = max_perturb;
+  r["time_limit_seconds"] = time_limit;
+  r["success"] = info.success;
+  r["steps"] = info.num_steps;
+  r["best_inconsistent_stars"] = info.best_num_inconsistent_stars;
+  r["final_inconsistent_stars"] = after.num_inconsistent_stars;
+  r["final_inconsistent_simplices"] = after.num_inconsistent_simplices;
+  r["total_seconds"] = seconds_since(t0);
+  return r;
+}
+
+json run_gudhi(const io::PointSet& ps, const tangential::TangentPlanes& planes, int m, int threads, double max_perturb,
+               double time_limit) {
+  switch (m) {
+    case 2: return run_gudhi_m<2>(ps, planes, threads, max_perturb, time_limit);
+    case 3: return run_gudhi_m<3>(ps, planes, threads, max_perturb, time_limit);
+    default: return json{{"error", "GUDHI is run for m = 2 and 3 only"}};
+  }
+}
+
+json run_delcert(const Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
+                 const std::string& name) {
+  refine::RefineParameters p;
+  p.threads = threads;
+  p.seed = seed;
+  auto t0 = std::chrono::steady_clock::now();
+  refine::RefineResult r = refine::refine(manifold, ps, p);
+  const double total = seconds_since(t0);
+  json j;
+  j["parameters"] = {{"mode", "practical"},
+                     {"eps", r.eps_text.empty() ? io::format_double(r.eps) : r.eps_text},
+                     {"gamma0", r.parameters.gamma0},
+                     {"alpha", r.parameters.alpha},
+                     {"beta", r.parameters.beta},
+                     {"delta0", r.parameters.delta0}};
+  j["initial_inconsistent_stars"] = r.initial_inconsistent_stars;
+  j["initial_inconsistent_simplices"] = r.initial_inconsistent_simplices;
+  j["converged"] = r.converged;
+  j["stop_reason"] = r.stop_reason;
+  j["rounds"] = r.rounds;
+  j["points_added"] = r.points.size() - r.input_size;
+  json rules = json::object();
+  for (int i = 0; i < refine::kNumRules; ++i)
+    rules[refine::to_string(static_cast<refine::Rule>(i))] = {{"inserted", r.rules[i].inserted},
+                                                               {"seconds", r.rules[i].seconds},
+                                                               {"candidates", r.rules[i].candidates},
+                                                               {"rejected_hit", r.rules[i].rejected_hit},
+                                                               {"fallbacks", r.rules[i].fallbacks}};
+  j["rules"] = rules;
+  j["time_seconds"] = {{"stars", r.star_seconds},
+                       {"configurations", r.configuration_seconds},
+                       {"total", total}};
+  const auto& f = r.final;
+  j["final_inconsistent_stars"] = f.inconsistent_stars;
+  j["final_inconsistent_simplices"] = f.inconsistent_simplices;
+  j["final_min_thickness"] = f.min_thickness;
+  j["final_min_face_thickness_ratio"] = f.min_face_thickness_ratio;
+  j["final_min_protection"] = f.min_protection;
+  j["final_min_protection_ratio"] = f.min_protection_ratio;
+  j["final_max_radius"] = f.max_radius;
+  j["sparsity_violations"] = r.sparsity_violations.size();
+  j["claims_hold"] = f.consistent && f.all_good && f.all_small && f.protected_claim;
+  if (!out_dir.empty()) {
+    refine::OutputContext ctx;
+    ctx.manifold = manifold.spec().name;
+    ctx.manifold_source = manifold.spec().source;
+    ctx.input = "bench_refine " + name;
+    ctx.text = {r.eps_text, "0.1", "0.3", "1.1", refine::default_delta0("0.1", manifold.intrinsic_dimension())};
+    const std::string dir = out_dir + "/" + name;
+    refine::write_refine_output(dir, r, p, ctx);
+    {
+      io::PointSet input;
+      input.dimension = ps.dimension;
+      input.coordinates = ps.coordinates;
+      io::write_points(dir + "/input.txt", input);
+    }
+    j["output"] = dir;
+  }
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string cases_text = "t3:10000,so3:10000";
+  int threads = 2;
+  double gudhi_limit = 120, max_perturb = 0.01;
+  std::uint64_t seed = 1;
+  int reps = 1;
+  bool gudhi = true;
+  std::string out_dir;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--cases") cases_text = next();
+    else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--gudhi-time-limit") gudhi_limit = std::stod(next());
+    else if (a == "--max-perturb") max_perturb = std::stod(next());
+    else if (a == "--seed") seed = std::stoull(next());
+    else if (a == "--reps") reps = std::max(1, std::stoi(next()));
+    else if (a == "--no-gudhi") gudhi = false;
+    else if (a == "--out-dir") out_dir = next();
+    else {
+      std::cerr << "usage: bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120] "
+                   "[--max-perturb 0.01] [--seed 1] [--no-gudhi] [--out-dir DIR]\n";
+      return 2;
+    }
+  }
+  json doc;
+  doc["benchmark"] = "refinement to a consistent tangential complex: delcert refine vs GUDHI's perturbation fix";
+  doc["threads"] = threads;
+  doc["seed"] = seed;
+  json results = json::array();
+  for (const Case& c : parse_cases(cases_text)) {
+    Manifold manifold(io::read_spec("builtin:" + c.manifold));
+    Random rng(seed);
+    io::PointSet ps;
+    sample_manifold(manifold, c.count, rng, ps);
+    auto planes = tangential::compute_tangent_planes(manifold, ps, threads);
+    json e;
+    e["manifold"] = c.manifold;
+    e["points"] = c.count;
+    e["sampling"] = "uniform with respect to volume (built-in parametrisation), seed " + std::to_string(seed);
+    std::cerr << c.manifold << " " << c.count << ": delcert" << std::flush;
+    {
+      std::vector<double> totals;
+      json d;
+      for (int r = 0; r < reps; ++r) {
+        json one = run_delcert(manifold, ps, threads, seed, r == 0 ? out_dir : std::string(),
+                               c.manifold + "-" + std::to_string(c.count));
+        totals.push_back(one["time_seconds"]["total"].get<double>());
+        if (r == 0) d = one;
+        else if (one["points_added"] != d["points_added"]) d["warning"] = "runs differ: the refiner is not deterministic";
+      }
+      std::vector<double> sorted = totals;
+      std::sort(sorted.begin(), sorted.end());
+      d["total_seconds_runs"] = totals;
+      d["total_seconds_median"] = sorted[sorted.size() / 2];
+      e["delcert"] = d;
+    }
+    if (gudhi) {
+      std::cerr << ", gudhi" << std::flush;
+      e["gudhi"] = run_gudhi(ps, planes, manifold.intrinsic_dimension(), threads, max_perturb, gudhi_limit);
+      const json d = e["delcert"], g = e["gudhi"];
+      if (g.contains("total_seconds"))
+        e["time_ratio_gudhi_over_delcert"] = g["total_seconds"].get<double>() / d["total_seconds_median"].get<double>();
+    }
+    std::cerr << "\n";
+    results.push_back(e);
+    std::cerr << e.dump(2) << std::endl;  // each case as soon as it is done (stdout gets one document)
+  }
+  doc["results"] = results;
+  std::cout << doc.dump(2) << std::endl;
+  return 0;
+}

@@ -1,0 +1,210 @@
+// delcert refine --manifold SPEC (--points POINTS | --eps E) [--mode practical|paper] [--gamma0 G]
+//                [--alpha A] [--beta B] [--delta0 D] [--seed S] [--threads T] --out DIR
+//
+// Refines a sample of M until its tangential Delaunay complex is thick, protected and (in the
+// practical mode) consistent (paper §4, DESIGN §2 "Refinement"; see core/refine/refiner.hpp for
+// the rules). Writes DIR/points.txt (the input points first, in order), DIR/complex.txt,
+// DIR/report.json and DIR/claims.json. Exit status 0 when converged, 4 when a cap stopped the
+// run (the partial output is written and report.json says "converged": false), 2 on bad input.
+//
+// Defaults (the paper's constants are unusable at any ε one can compute with: H1 asks β >= 2.9
+// and H2 Γ0 < 1/(B+1) < 1e-8):
+//   Γ0 = 0.1   thickness >= 0.01 for triangles, 0.001 for tetrahedra, 1e-4 for 4-simplices;
+//   α  = 0.3   the paper's α < 1/2;
+//   β  = 1.1   hitting sets of weighted radius < 1.1 R_p: the search grows like β^(m(m+1)) (at
+//              β = 1.5 it examines ~15x more simplices per candidate than at 1.2), and at
+//              realistic ε candidates are rarely hit at all;
+//   δ0 = Γ0^ceil((m+1)/2)   the largest power of Γ0 that satisfies H3 (0.01 for m = 2, 3);
+//              claimed protection δ̌^2 = δ0^2 (ε/9)^2;
+//   ε when only --points is given: two significant digits above the input's largest R_p, so
+//              that Rule 1 has nothing to do at the start.
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/app/command.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/points.hpp"
+#include "core/io/spec.hpp"
+#include "core/manifold/manifold.hpp"
+#include "core/refine/refine_output.hpp"
+#include "core/refine/refiner.hpp"
+#include "core/sampling/sampling.hpp"
+#include "exact/polynomial.hpp"
+
+namespace delcert::app {
+
+namespace {
+
+struct RefineArgs {
+  std::string manifold, points, out, mode = "practical";
+  std::string eps, gamma0 = "0.1", alpha = "0.3", beta = "1.1", delta0;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  std::size_t max_inserted = 0, max_rounds = 0;
+};
+
+// An exact rational option ("0.1", "1/10", "1e-1"); `name` is the option, for the message.
+double rational_option(const std::string& name, const std::string& text, mpq_class* exact = nullptr) {
+  try {
+    mpq_class q = parse_rational(text);
+    if (exact) *exact = q;
+    return q.get_d();
+  } catch (const std::invalid_argument&) {
+    throw io::InputError(name, 0, "'" + text + "' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10");
+  }
+}
+
+void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
+  const double tolerance = manifold.spec().residual_tolerance.get_d();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double r = manifold.residual(points.point(i));
+    if (!(r <= tolerance)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.3g exceeds the spec's residual_tolerance %.3g", r, tolerance);
+      throw io::InputError(path, 0, "point " + std::to_string(i) + " (0-based) is not on " + manifold.spec().name +
+                                        ": max |F_i(p)| = " + buf + "; project the points onto M first");
+    }
+    if (!manifold.on_selected_component(points.point(i)))
+      throw io::InputError(path, 0, "point " + std::to_string(i) + " (0-based) is on the wrong component of " +
+                                        manifold.spec().name + " (the spec's selector is not positive there)");
+  }
+}
+
+int run_refine(const RefineArgs& a) {
+  Manifold manifold(io::read_spec(a.manifold));
+  const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
+  if (m < 2 || m > 4)
+    throw io::InputError(manifold.spec().source, 0,
+                         "intrinsic dimension " + std::to_string(m) + ": refinement is implemented for m = 2, 3 and 4");
+  if (a.points.empty() && a.eps.empty())
+    throw io::InputError("delcert refine", 0, "give --points POINTS, or --eps E to start from an eps-net of M");
+
+  refine::RefineParameters params;
+  params.mode = a.mode == "paper" ? refine::RefineMode::paper : refine::RefineMode::practical;
+  refine::ParameterText text;
+  text.eps = a.eps;
+  text.gamma0 = a.gamma0;
+  text.alpha = a.alpha;
+  text.beta = a.beta;
+  text.delta0 = a.delta0;
+  if (text.delta0.empty()) {
+    rational_option("--gamma0", a.gamma0);
+    text.delta0 = refine::default_delta0(a.gamma0, m);
+  }
+  if (!a.eps.empty()) {
+    params.eps = rational_option("--eps", a.eps);
+    if (!(params.eps > 0)) throw io::InputError("--eps", 0, "must be positive");
+  }
+  params.gamma0 = rational_option("--gamma0", a.gamma0);
+  params.alpha = rational_option("--alpha", a.alpha);
+  params.beta = rational_option("--beta", a.beta);
+  params.delta0 = rational_option("--delta0", text.delta0);
+  params.gamma0_text = text.gamma0;
+  params.delta0_text = text.delta0;
+  if (!(params.gamma0 > 0 && params.gamma0 <= 1)) throw io::InputError("--gamma0", 0, "must lie in (0, 1]");
+  if (!(params.alpha > 0 && params.alpha < 1)) throw io::InputError("--alpha", 0, "must lie in (0, 1); the paper takes alpha < 1/2");
+  if (!(params.beta > 0)) throw io::InputError("--beta", 0, "must be positive; the paper takes beta > 1");
+  if (!(params.delta0 >= 0 && params.delta0 < 1)) throw io::InputError("--delta0", 0, "must lie in [0, 1); the paper takes delta0 < 1/4");
+  params.seed = a.seed;
+  params.threads = a.threads;
+  params.max_inserted = a.max_inserted;
+  params.max_rounds = a.max_rounds;
+
+  io::PointSet input;
+  std::string input_text;
+  if (!a.points.empty()) {
+    io::PointReadOptions ro;
+    ro.expected_dimension = N;
+    input = io::read_points(a.points, ro);
+    check_on_manifold(manifold, input, a.points);
+    input_text = a.points;
+  } else {
+    EpsNetOptions eo;
+    eo.eps = params.eps;
+    eo.seed = a.seed;
+    auto net = eps_net(manifold, eo);
+    input = std::move(net.points);
+    input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + a.eps + " --seed " + std::to_string(a.seed) + ")";
+  }
+
+  const bool tty = isatty(STDERR_FILENO);
+  if (tty)
+    params.progress = [](const refine::RefineProgress& p) {
+      std::fprintf(stderr, "\rround %zu: %zu points (+%zu); pending big %zu, bad %zu, bad cosph %zu, unprotected %zu, inconsistent %zu   ",
+                   p.round, p.points, p.inserted, p.pending[0], p.pending[1], p.pending[2], p.pending[3], p.pending[4]);
+      std::fflush(stderr);
+    };
+  refine::RefineResult result;
+  try {
+    result = refine::refine(manifold, input, params);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(a.points.empty() ? std::string("delcert refine") : a.points, 0, e.what());
+  } catch (const std::domain_error& e) {
+    throw io::InputError(a.points.empty() ? std::string("delcert refine") : a.points, 0, e.what());
+  }
+  if (tty) std::fprintf(stderr, "\n");
+
+  refine::OutputContext ctx;
+  ctx.manifold = manifold.spec().name;
+  ctx.manifold_source = manifold.spec().source;
+  ctx.input = input_text;
+  ctx.text = text;
+  refine::write_refine_output(a.out, result, params, ctx);
+
+  const auto& f = result.final;
+  std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), m, N);
+  std::printf("mode               %s\n", refine::to_string(params.mode));
+  std::printf("eps                %s%s\n", a.eps.empty() ? result.eps_text.c_str() : a.eps.c_str(),
+              result.eps_derived ? " (derived from the input's largest R_p)" : "");
+  std::printf("points             %zu input + %zu inserted = %zu\n", result.input_size, result.points.size() - result.input_size,
+              result.points.size());
+  for (int i = 0; i < refine::kNumRules; ++i)
+    if (result.rules[i].inserted || result.rules[i].failures)
+      std::printf("  %-16s %zu inserted (%zu failures, %.3f s)\n", refine::to_string(static_cast<refine::Rule>(i)),
+                  result.rules[i].inserted, result.rules[i].failures, result.rules[i].seconds);
+  std::printf("rounds             %zu\n", result.rounds);
+  std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", result.stop_reason.c_str());
+  std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
+  std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
+  std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
+  std::printf("min distance       %.4g (eps/9 = %.4g; %zu sparsity violations)\n", f.min_distance, result.eps / 9,
+              result.sparsity_violations.size());
+  std::printf("time               %.3f s -> %s\n", result.total_seconds, a.out.c_str());
+  return result.converged ? kExitOk : kExitNotConverged;
+}
+
+}  // namespace
+
+Command add_refine_command(CLI::App& app) {
+  auto args = std::make_shared<RefineArgs>();
+  auto* sub = app.add_subcommand("refine", "refine a sample of M until its tangential complex is thick, protected and consistent");
+  sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
+  sub->add_option("--points", args->points, "input points on M (delcert-points, OFF or nOFF); without it, an eps-net");
+  sub->add_option("--eps", args->eps,
+                  "sampling radius eps (exact decimal or fraction); required without --points; with --points, default: "
+                  "two significant digits above the input's largest R_p");
+  sub->add_option("--mode", args->mode, "practical (default: ends consistent and protected) or paper (Algorithm 1 exactly)")
+      ->check(CLI::IsMember({"practical", "paper"}))
+      ->capture_default_str();
+  sub->add_option("--gamma0", args->gamma0, "thickness bound Gamma0: every j-face needs thickness >= Gamma0^j")->capture_default_str();
+  sub->add_option("--alpha", args->alpha, "picking ratio alpha: picking region B(c_p, alpha R_p)")->capture_default_str();
+  sub->add_option("--beta", args->beta, "hitting-set radius ratio beta")->capture_default_str();
+  sub->add_option("--delta0", args->delta0,
+                  "protection ratio delta0: claimed protection delta0^2 (eps/9)^2 (default: Gamma0^ceil((m+1)/2), "
+                  "the largest power of Gamma0 allowed by the paper's H3)");
+  sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")->capture_default_str();
+  sub->add_option("--threads", args->threads, "worker threads (0: all cores); the output does not depend on it")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--max-inserted", args->max_inserted, "cap on inserted points (0: 20 x input + 20000); exit 4 when hit")
+      ->capture_default_str();
+  sub->add_option("--max-rounds", args->max_rounds, "cap on refinement rounds (0: 2000); exit 4 when hit")->capture_default_str();
+  sub->add_option("--out", args->out, "output directory (created if missing)")->required();
+  return {sub, [args] { return run_refine(*args); }};
+}
+
+}  // namespace delcert::app

@@ -1,0 +1,238 @@
+#include "core/refine/refine_output.hpp"
+
+#include <gmpxx.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "core/io/atomic_file.hpp"
+#include "core/io/complex.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/points.hpp"
+#include "exact/polynomial.hpp"
+
+namespace delcert::refine {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+// A decimal with `digits` significant digits strictly below x > 0 (a safe rational lower bound
+// of a double that was itself rounded: the margin 1e-9 covers it).
+mpq_class decimal_below(double x, int digits) {
+  const double y = x * (1 - 1e-9);
+  int e = static_cast<int>(std::floor(std::log10(y))) - (digits - 1);
+  const double scale = std::pow(10.0, e);
+  long k = static_cast<long>(std::floor(y / scale));
+  if (k <= 0) return mpq_class(0);
+  mpq_class q(k);
+  mpz_class p10;
+  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
+  if (e >= 0)
+    q *= p10;
+  else
+    q /= p10;
+  q.canonicalize();
+  return q;
+}
+
+mpq_class eps_rational(const RefineResult& r, const ParameterText& t) {
+  return parse_rational(t.eps.empty() ? r.eps_text : t.eps);
+}
+
+const char* kPracticalRules[] = {
+    "unprotected: a Gamma0-good (m+1)-simplex q*s in cosph(p) leaves s unprotected; the paper shows none exist under "
+    "H0-H5, at realistic eps they do: insert Pick_valid in the picking region of s at p (the point lands in s's "
+    "Delaunay ball and kills s)",
+    "inconsistent: s in star(p) but not in star(q) for a vertex q; the paper's theorem rules this out only for tiny eps: "
+    "insert Pick_valid in the picking region of s at the vertex p* whose star holds s with the largest R_p*(s) (as "
+    "Boissonnat-Ghosh refine inconsistent configurations through their picking regions)",
+    "cosph uses the bound delta0^2 max(L(q*s), eps/9)^2 and counts points on or inside the ball: an empty cosph then "
+    "implies the claimed delta-check^2 = delta0^2 (eps/9)^2 even where the input is denser than eps/9",
+    "Pick_valid rejects candidates closer than eps/9 to a point (the sparsity invariant is enforced, not inferred) and "
+    "after pick_attempts rejections takes the best candidate seen (farther than eps/9 if any, then the farthest); a "
+    "fallback closer than eps/9 is reported as a sparsity violation",
+    "decisions carry a relative safety margin of 1e-9 towards refining more (thickness, R_p < eps, protection), so "
+    "that the exact certifier agrees with the double-precision producer",
+    "a round applies Rule 1 alone while big cells exist, otherwise every other configuration in canonical order "
+    "(rule, point, cell, apex), skipping those whose Delaunay ball received a point earlier in the round"};
+
+}  // namespace
+
+ClaimsOutcome make_claims(const RefineResult& r, const RefineParameters& p, const ParameterText& t) {
+  ClaimsOutcome out;
+  const FinalMeasures& f = r.final;
+  json j;
+  j["format"] = "delcert-claims v1";
+  const mpq_class eps = eps_rational(r, t);
+  if (f.all_small)
+    j["eps"] = rational_to_string(eps);
+  else
+    out.omitted.emplace_back("eps", "some star simplex has R_p >= eps, or a star is not closed");
+  mpq_class mu0eps = eps / 9;
+  mu0eps.canonicalize();
+  if (f.min_distance > mu0eps.get_d() * (1 + 1e-9)) {
+    j["sparsity"] = rational_to_string(mu0eps);
+  } else if (f.min_distance > 0) {
+    j["sparsity"] = rational_to_string(decimal_below(f.min_distance, 3));
+    out.omitted.emplace_back("sparsity eps/9", "the smallest distance is below eps/9 (the input is denser, or a "
+                                               "sparsity violation was reported): the claim is a bound just below it");
+  }
+  if (f.all_good)
+    j["gamma0"] = rational_to_string(parse_rational(t.gamma0));
+  else
+    out.omitted.emplace_back("gamma0", "some star simplex is Gamma0-bad");
+  mpq_class d0 = parse_rational(t.delta0);
+  mpq_class dcheck2 = d0 * d0 * mu0eps * mu0eps;
+  dcheck2.canonicalize();
+  if (f.protected_claim)
+    j["power_protection"] = rational_to_string(dcheck2);
+  else
+    out.omitted.emplace_back("power_protection", "some star simplex is not delta-check^2-power-protected");
+  (void)p;
+  out.json = j.dump(2) + "\n";
+  return out;
+}
+
+std::string make_report(const RefineResult& r, const RefineParameters& /*given*/, const OutputContext& c,
+                        const ClaimsOutcome& claims) {
+  const RefineParameters& p = r.parameters;  // as used
+  const FinalMeasures& f = r.final;
+  json j;
+  j["format"] = "delcert-refine-report v1";
+  j["manifold"] = c.manifold;
+  j["manifold_source"] = c.manifold_source;
+  j["mode"] = to_string(p.mode);
+  j["input"] = {{"source", c.input}, {"points", r.input_size}, {"min_distance", number(f.input_min_distance)}};
+  const std::string eps_text = c.text.eps.empty() ? r.eps_text : c.text.eps;
+  j["parameters"] = {{"eps", eps_text},
+                     {"eps_source", r.eps_derived ? "derived: two significant digits above the input's largest R_p"
+                                                  : "given"},
+                     {"gamma0", c.text.gamma0},
+                     {"alpha", c.text.alpha},
+                     {"beta", c.text.beta},
+                     {"delta0", c.text.delta0},
+                     {"mu0", "1/9"},
+                     {"seed", p.seed},
+                     {"max_inserted", p.max_inserted},
+                     {"max_rounds", p.max_rounds},
+                     {"pick_attempts", p.pick_attempts}};
+  {
+    const HypothesesReport& h = r.hypotheses;
+    json hs = json::array();
+    for (const auto& ch : h.checks)
+      hs.push_back({{"name", ch.name},
+                    {"statement", ch.statement},
+                    {"status", to_string(ch.status)},
+                    {"lhs", ch.lhs ? number(*ch.lhs) : json(nullptr)},
+                    {"rhs", ch.rhs ? number(*ch.rhs) : json(nullptr)},
+                    {"detail", ch.detail}});
+    j["hypotheses"] = {{"checks", hs},
+                       {"eps0_tilde", h.eps0_tilde},
+                       {"sparsity_lemma", {{"statement", "(1 - delta0^2)(1 - alpha - 4.5 eps0~) / 4 > 1/9"},
+                                           {"lhs", h.sparsity_lemma_lhs},
+                                           {"holds", h.sparsity_lemma_holds}}},
+                       {"max_eps", h.max_eps ? number(*h.max_eps) : json(nullptr)},
+                       {"max_eps_note", h.max_eps_note},
+                       {"unspecified_constants", h.unspecified},
+                       {"any_fails", h.any_fails},
+                       {"all_hold", h.all_hold}};
+  }
+  j["converged"] = r.converged;
+  j["stop_reason"] = r.stop_reason;
+  if (p.time_limit > 0) j["time_limit_seconds"] = p.time_limit;
+  j["rounds"] = r.rounds;
+  {
+    std::size_t applied = 0;
+    for (const auto& s : r.rules) applied += s.applied;
+    j["iterations"] = applied;  // rule applications (Algorithm 1 iterations), one inserted point each
+  }
+  {
+    json ic = json::object();
+    for (int i = 0; i < kNumRules; ++i) ic[to_string(static_cast<Rule>(i))] = r.initial_configurations[i];
+    j["initial"] = {{"inconsistent_simplices", r.initial_inconsistent_simplices},
+                    {"inconsistent_stars", r.initial_inconsistent_stars},
+                    {"configurations", ic}};
+  }
+  j["points"] = {{"input", r.input_size}, {"inserted", r.points.size() - r.input_size}, {"total", r.points.size()}};
+  json rules = json::object();
+  const bool paper = p.mode == RefineMode::paper;
+  for (int i = 0; i < kNumRules; ++i) {
+    const Rule rule = static_cast<Rule>(i);
+    if (paper && (rule == Rule::unprotected || rule == Rule::inconsistent)) continue;
+    const RuleStats& s = r.rules[i];
+    rules[to_string(rule)] = {{"inserted", s.inserted},
+                              {"applied", s.applied},
+                              {"skipped_stale", s.skipped_stale},
+                              {"candidates", s.candidates},
+                              {"rejected_hit", s.rejected_hit},
+                              {"rejected_sparse", s.rejected_sparse},
+                              {"psi_failures", s.psi_failures},
+                              {"fallbacks", s.fallbacks},
+                              {"failures", s.failures},
+                              {"seconds", s.seconds}};
+  }
+  j["rules"] = rules;
+  if (!paper) {
+    json pr = json::array();
+    for (const char* s : kPracticalRules) pr.push_back(s);
+    j["practical_rules"] = pr;
+  }
+  j["time_seconds"] = {{"stars", r.star_seconds}, {"configurations", r.configuration_seconds}, {"total", r.total_seconds}};
+  json remaining = json::object();
+  for (int i = 0; i < kNumRules; ++i) remaining[to_string(static_cast<Rule>(i))] = f.remaining[i];
+  const double mu0eps = r.eps / 9;
+  j["final"] = {{"stars", f.stars},
+                {"star_cells", f.star_cells},
+                {"complex_simplices", f.complex_simplices},
+                {"open_stars", f.open_stars},
+                {"inconsistent_simplices", f.inconsistent_simplices},
+                {"inconsistent_stars", f.inconsistent_stars},
+                {"remaining_configurations", remaining},
+                {"max_radius", number(f.max_radius)},
+                {"min_thickness", number(f.min_thickness)},
+                {"min_face_thickness_ratio", number(f.min_face_thickness_ratio)},
+                {"min_protection", number(f.min_protection)},
+                {"power_protection_bound", number(p.delta0 * p.delta0 * mu0eps * mu0eps)},
+                {"min_protection_ratio", number(f.min_protection_ratio)},
+                {"min_distance", number(f.min_distance)},
+                {"min_inserted_distance", number(f.min_inserted_distance)},
+                {"consistent", f.consistent},
+                {"all_gamma0_good", f.all_good},
+                {"all_radii_below_eps", f.all_small},
+                {"protected", f.protected_claim}};
+  json viol = json::array();
+  for (std::size_t i = 0; i < r.sparsity_violations.size() && i < 20; ++i) {
+    const auto& v = r.sparsity_violations[i];
+    viol.push_back({{"point", v.point}, {"nearest", v.nearest}, {"distance", v.distance}, {"rule", to_string(v.rule)}});
+  }
+  j["sparsity"] = {{"bound", mu0eps},
+                   {"statement", "every inserted point is farther than eps/9 from the points before it"},
+                   {"violations", r.sparsity_violations.size()},
+                   {"first_violations", viol}};
+  json om = json::object();
+  for (const auto& [k, why] : claims.omitted) om[k] = why;
+  j["claims"] = {{"file", "claims.json"}, {"not_claimed", om}};
+  return j.dump(2) + "\n";
+}
+
+void write_refine_output(const std::string& dir, const RefineResult& result, const RefineParameters& parameters,
+                         const OutputContext& context) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw io::InputError(dir, 0, "cannot create the output directory: " + (ec ? ec.message() : std::string("not a directory")));
+  const fs::path d(dir);
+  io::write_points((d / "points.txt").string(), result.points);
+  io::write_complex((d / "complex.txt").string(), result.complex);
+  ClaimsOutcome claims = make_claims(result, parameters, context.text);
+  io::write_file_atomically((d / "claims.json").string(), claims.json);
+  io::write_file_atomically((d / "report.json").string(), make_report(result, parameters, context, claims));
+}
+
+}  // namespace delcert::refine

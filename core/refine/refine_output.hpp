@@ -1,0 +1,55 @@
+// What `delcert refine` writes (DESIGN §5b): DIR/points.txt, DIR/complex.txt, DIR/report.json
+// and DIR/claims.json, each atomically.
+//
+// claims.json ("delcert-claims v1", read by delcert-certify) holds only what the output keeps,
+// by the producer's own measure, every value an exact rational string:
+//   eps               every star simplex has R_p(σ) < ε               (when no star cell is big)
+//   sparsity          every two points are farther apart than this:  μ0 ε = ε/9 when that holds,
+//                     otherwise a rational just below the smallest distance (a random input, or
+//                     a reported sparsity violation)
+//   gamma0            every simplex of the complex is Γ0-good          (when every star simplex is)
+//   power_protection  δ̌^2 = δ0^2 (ε/9)^2: every star simplex is power-protected by more than
+//                     that                                              (when the margin says so)
+// A claim that does not hold is left out and report.json says why. points.txt, complex.txt and
+// claims.json are byte-identical for the same inputs and seed; report.json differs only in its
+// "seconds" fields.
+#pragma once
+
+#include <string>
+
+#include "core/refine/refiner.hpp"
+
+namespace delcert::refine {
+
+// The user's parameters as exact rational text (the claims are derived from these, not from
+// the rounded doubles).
+struct ParameterText {
+  std::string eps;     // "" when derived (then RefineResult::eps_text is used)
+  std::string gamma0;
+  std::string alpha;
+  std::string beta;
+  std::string delta0;
+};
+
+struct OutputContext {
+  std::string manifold;      // spec name
+  std::string manifold_source;
+  std::string input;         // the --points path, or a description of the generated ε-net
+  ParameterText text;
+};
+
+struct ClaimsOutcome {
+  std::string json;  // the claims.json text
+  std::vector<std::pair<std::string, std::string>> omitted;  // (claim, why)
+};
+
+ClaimsOutcome make_claims(const RefineResult& result, const RefineParameters& parameters, const ParameterText& text);
+
+std::string make_report(const RefineResult& result, const RefineParameters& parameters, const OutputContext& context,
+                        const ClaimsOutcome& claims);
+
+// Creates `dir` if missing and writes the four files atomically (claims and report last).
+void write_refine_output(const std::string& dir, const RefineResult& result, const RefineParameters& parameters,
+                         const OutputContext& context);
+
+}  // namespace delcert::refine

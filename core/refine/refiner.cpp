@@ -1,0 +1,713 @@
+#include "core/refine/refiner.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/refine/cospherical.hpp"
+#include "core/refine/hitting_sets.hpp"
+#include "core/refine/picking_region.hpp"
+#include "core/refine/point_index.hpp"
+#include "core/refine/simplex_measures.hpp"
+#include "core/sampling/random.hpp"
+#include "core/tangential/neighbour_index.hpp"
+#include "core/tangential/parallel.hpp"
+#include "core/tangential/star.hpp"
+#include "core/tangential/tangent_planes.hpp"
+#include "core/tangential/tangential_complex.hpp"
+#include "exact/polynomial.hpp"
+
+namespace delcert::refine {
+
+const char* to_string(RefineMode m) { return m == RefineMode::paper ? "paper" : "practical"; }
+
+const char* to_string(Rule r) {
+  switch (r) {
+    case Rule::big: return "big";
+    case Rule::bad_star: return "bad_star";
+    case Rule::bad_cosph: return "bad_cosph";
+    case Rule::unprotected: return "unprotected";
+    case Rule::inconsistent: return "inconsistent";
+  }
+  return "?";
+}
+
+std::string decimal_above(double x) {
+  if (!(x > 0) || !std::isfinite(x)) throw std::invalid_argument("decimal_above: needs a positive finite number");
+  const int e = static_cast<int>(std::floor(std::log10(x))) - 1;  // two significant digits: k 10^e
+  mpz_class p10;
+  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
+  for (long k = std::max(1L, static_cast<long>(std::floor(x / std::pow(10.0, e)))) ;; ++k) {
+    mpq_class q(k);
+    if (e >= 0)
+      q *= p10;
+    else
+      q /= p10;
+    q.canonicalize();
+    if (q.get_d() > x) return rational_to_string(q);  // the smallest such decimal whose double exceeds x
+  }
+}
+
+std::string default_delta0(const std::string& gamma0, int m) {
+  const mpq_class g = parse_rational(gamma0);
+  mpq_class d(1);
+  for (int i = 0; i < (m + 2) / 2; ++i) d *= g;
+  d.canonicalize();
+  return rational_to_string(d);
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr double kMargin = 1e-9;  // relative safety margin of practical-mode decisions
+constexpr int kMaxCell = 5;       // m + 1 <= 5
+
+struct CellKey {
+  std::array<int, kMaxCell> v{-1, -1, -1, -1, -1};
+  auto operator<=>(const CellKey&) const = default;
+  bool operator==(const CellKey&) const = default;
+};
+struct CellKeyHash {
+  std::size_t operator()(const CellKey& k) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int x : k.v) {
+      h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
+
+CellKey make_key(std::span<const int> cell) {
+  CellKey k;
+  for (std::size_t i = 0; i < cell.size(); ++i) k.v[i] = cell[i];
+  return k;
+}
+
+struct Configuration {
+  Rule rule = Rule::big;
+  int p = 0;
+  CellKey cell;
+  int q = -1;  // cosph apex
+  double radius2 = 0;
+  std::vector<double> centre;
+};
+
+bool canonical_less(const Configuration& a, const Configuration& b) {
+  if (a.rule != b.rule) return a.rule < b.rule;
+  if (a.p != b.p) return a.p < b.p;
+  if (a.cell != b.cell) return a.cell < b.cell;
+  return a.q < b.q;
+}
+
+double squared_distance(std::span<const double> a, std::span<const double> b) {
+  double s = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    double e = a[j] - b[j];
+    s += e * e;
+  }
+  return s;
+}
+
+class Refiner {
+ public:
+  Refiner(const Manifold& manifold, const io::PointSet& input, const RefineParameters& params)
+      : M_(manifold), P_(params), m_(manifold.intrinsic_dimension()), N_(manifold.ambient_dimension()) {
+    if (P_.delta0 < 0) {
+      P_.delta0 = std::pow(P_.gamma0, (m_ + 2) / 2);
+      if (!P_.gamma0_text.empty()) P_.delta0_text = default_delta0(P_.gamma0_text, m_);
+    }
+    validate(input);
+    paper_ = P_.mode == RefineMode::paper;
+    if (P_.max_inserted == 0) P_.max_inserted = 20 * input.size() + 20000;
+    if (P_.max_rounds == 0) P_.max_rounds = 2000;
+    if (P_.pick_attempts <= 0) P_.pick_attempts = paper_ ? 2000 : 200;
+    R_.points = input;
+    R_.input_size = input.size();
+    rng_.emplace(P_.seed);
+  }
+
+  RefineResult run();
+
+ private:
+  void validate(const io::PointSet& input) const;
+  void setup_eps();
+  double gamma_check() const { return paper_ ? P_.gamma0 : P_.gamma0 * (1 + kMargin); }
+  CosphOptions cosph_options(double radius2) const {
+    CosphOptions o;
+    o.delta0 = P_.delta0;
+    if (!paper_) {
+      o.length_floor = mu0_eps_;
+      o.lower = -std::numeric_limits<double>::infinity();
+      o.slack = kMargin * radius2;
+    }
+    return o;
+  }
+  bool is_big(double radius2) const { return radius2 >= (paper_ ? eps2_ : eps2_ * (1 - 2 * kMargin)); }
+
+  std::vector<Configuration> configurations_of(std::size_t p) const;
+  void recompute_configurations(const std::vector<std::size_t>& which);
+  void update_consistency(const std::vector<std::size_t>& changed);
+  void set_mask(const CellKey& key, int bit, bool on);
+  std::vector<Configuration> inconsistent_configurations() const;
+  std::array<std::size_t, kNumRules> pending() const;
+  bool stale(const Configuration& c, std::size_t round_start) const;
+  std::optional<Eigen::VectorXd> produce(const Configuration& c, RuleStats& st);
+  std::optional<Eigen::VectorXd> pick_valid(const Configuration& c, RuleStats& st);
+  bool insert(const Eigen::VectorXd& x, Rule rule);
+  bool new_star_is_big(std::size_t x);
+  std::vector<std::size_t> cosph_affected(std::size_t round_start) const;
+  void measure();
+
+  const Manifold& M_;
+  RefineParameters P_;
+  int m_, N_;
+  bool paper_ = false;
+  double eps2_ = 0, mu0_eps_ = 0;
+  RefineResult R_;
+  std::optional<Random> rng_;
+  tangential::TangentPlanes planes_;
+  tangential::TangentialComplex tc_;
+  tangential::StarOptions star_options_;
+  PointIndex index_;
+  tangential::NeighbourIndex paper_index_;  // paper mode: star(x) right after a Rule 2 insertion
+  std::vector<std::vector<Configuration>> configs_;
+  std::vector<std::vector<int>> cells_copy_;  // per point: its star's cells as last seen (for consistency)
+  std::unordered_map<CellKey, std::uint8_t, CellKeyHash> masks_;
+  std::set<CellKey> inconsistent_;
+  double max_radius2_ = 0;
+  std::size_t open_stars_ = 0;
+};
+
+void Refiner::validate(const io::PointSet& input) const {
+  if (m_ < 2 || m_ > 4)
+    throw std::invalid_argument("refine: the tangential complex supports intrinsic dimension 2, 3 or 4; the manifold has " +
+                                std::to_string(m_));
+  if (input.dimension != N_)
+    throw std::invalid_argument("refine: the points have dimension " + std::to_string(input.dimension) +
+                                ", the manifold's ambient dimension is " + std::to_string(N_));
+  if (input.size() < static_cast<std::size_t>(m_ + 2))
+    throw std::invalid_argument("refine: needs at least m + 2 = " + std::to_string(m_ + 2) + " points");
+  auto bad = [](const std::string& what) { throw std::invalid_argument("refine: " + what); };
+  if (!std::isfinite(P_.eps) || P_.eps < 0) bad("--eps must be a positive number");
+  if (!(P_.gamma0 > 0 && P_.gamma0 <= 1)) bad("--gamma0 must lie in (0, 1]");
+  if (!(P_.alpha > 0 && P_.alpha < 1)) bad("--alpha must lie in (0, 1) (the paper asks alpha < 1/2)");
+  if (!(P_.beta > 0) || !std::isfinite(P_.beta)) bad("--beta must be positive (the paper asks beta > 1)");
+  if (!(P_.delta0 >= 0 && P_.delta0 < 1)) bad("--delta0 must lie in [0, 1) (the paper asks delta0 < 1/4)");
+}
+
+void Refiner::setup_eps() {
+  if (P_.eps > 0) {
+    R_.eps = P_.eps;
+  } else {
+    double max2 = 0;
+    for (std::size_t p = 0; p < tc_.size(); ++p)
+      if (tc_.star(p).closed) max2 = std::max(max2, tc_.star(p).max_radius2);
+    if (!(max2 > 0)) throw std::invalid_argument("refine: cannot derive eps: no closed star; give --eps");
+    R_.eps_text = decimal_above(std::sqrt(max2));
+    R_.eps = parse_rational(R_.eps_text).get_d();
+    R_.eps_derived = true;
+  }
+  eps2_ = R_.eps * R_.eps;
+  mu0_eps_ = R_.eps / 9;
+}
+
+std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
+  std::vector<Configuration> out;
+  const tangential::Star& st = tc_.star(p);
+  if (!st.closed) return out;
+  const double g = gamma_check();
+  for (std::size_t c = 0; c < st.size(); ++c) {
+    const auto cell = st.cell(c);
+    const double r2 = st.radii2[c];
+    auto make = [&](Rule rule, int q) {
+      Configuration cf;
+      cf.rule = rule;
+      cf.p = static_cast<int>(p);
+      cf.cell = make_key(cell);
+      cf.q = q;
+      cf.radius2 = r2;
+      cf.centre.assign(st.centre(c).begin(), st.centre(c).end());
+      out.push_back(std::move(cf));
+    };
+    if (is_big(r2)) {
+      make(Rule::big, -1);
+      continue;
+    }
+    if (!make_simplex(R_.points, cell).is_good(g)) {
+      make(Rule::bad_star, -1);
+      continue;
+    }
+    for (const CosphMember& mem : cosph_members(R_.points, index_, cell, st.centre(c), r2, cosph_options(r2))) {
+      std::array<int, kMaxCell + 1> v;
+      std::copy(cell.begin(), cell.end(), v.begin());
+      v[cell.size()] = static_cast<int>(mem.q);
+      const bool good = make_simplex(R_.points, std::span<const int>(v.data(), cell.size() + 1)).is_good(g);
+      make(good ? Rule::unprotected : Rule::bad_cosph, static_cast<int>(mem.q));
+    }
+  }
+  return out;
+}
+
+void Refiner::recompute_configurations(const std::vector<std::size_t>& which) {
+  configs_.resize(R_.points.size());
+  tangential::parallel_chunks(which.size(), P_.threads, 16, [&](int) {
+    return [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) configs_[which[i]] = configurations_of(which[i]);
+    };
+  });
+}
+
+void Refiner::set_mask(const CellKey& key, int bit, bool on) {
+  const std::uint8_t full = static_cast<std::uint8_t>((1u << (m_ + 1)) - 1);
+  auto it = masks_.find(key);
+  std::uint8_t mask = it == masks_.end() ? 0 : it->second;
+  if (on)
+    mask = static_cast<std::uint8_t>(mask | (1u << bit));
+  else
+    mask = static_cast<std::uint8_t>(mask & ~(1u << bit));
+  if (mask == 0) {
+    if (it != masks_.end()) masks_.erase(it);
+    inconsistent_.erase(key);
+    return;
+  }
+  if (it == masks_.end())
+    masks_.emplace(key, mask);
+  else
+    it->second = mask;
+  if (mask == full)
+    inconsistent_.erase(key);
+  else
+    inconsistent_.insert(key);
+}
+
+void Refiner::update_consistency(const std::vector<std::size_t>& changed) {
+  const int k = m_ + 1;
+  cells_copy_.resize(R_.points.size());
+  for (std::size_t p : changed) {
+    auto position = [&](const CellKey& key) {
+      for (int i = 0; i < k; ++i)
+        if (key.v[i] == static_cast<int>(p)) return i;
+      return -1;
+    };
+    const auto& old = cells_copy_[p];
+    for (std::size_t c = 0; c + k <= old.size(); c += k) {
+      CellKey key = make_key(std::span<const int>(old.data() + c, k));
+      set_mask(key, position(key), false);
+    }
+    const tangential::Star& st = tc_.star(p);
+    cells_copy_[p] = st.cells;
+    for (std::size_t c = 0; c < st.size(); ++c) {
+      CellKey key = make_key(st.cell(c));
+      set_mask(key, position(key), true);
+    }
+  }
+}
+
+std::vector<Configuration> Refiner::inconsistent_configurations() const {
+  std::vector<Configuration> out;
+  const int k = m_ + 1;
+  for (const CellKey& key : inconsistent_) {
+    const auto it = masks_.find(key);
+    if (it == masks_.end()) continue;
+    int best_p = -1;
+    long best_c = -1;
+    double best_r2 = -1;
+    for (int i = 0; i < k; ++i) {
+      if (!(it->second & (1u << i))) continue;
+      const tangential::Star& st = tc_.star(key.v[i]);
+      long c = st.find(std::span<const int>(key.v.data(), k));
+      if (c < 0) continue;
+      if (st.radii2[c] > best_r2) best_r2 = st.radii2[c], best_p = key.v[i], best_c = c;
+    }
+    if (best_p < 0) continue;
+    const tangential::Star& st = tc_.star(best_p);
+    Configuration cf;
+    cf.rule = Rule::inconsistent;
+    cf.p = best_p;
+    cf.cell = key;
+    cf.radius2 = best_r2;
+    cf.centre.assign(st.centre(best_c).begin(), st.centre(best_c).end());
+    out.push_back(std::move(cf));
+  }
+  return out;
+}
+
+std::array<std::size_t, kNumRules> Refiner::pending() const {
+  std::array<std::size_t, kNumRules> n{};
+  for (const auto& v : configs_)
+    for (const auto& c : v) ++n[static_cast<int>(c.rule)];
+  n[static_cast<int>(Rule::inconsistent)] = inconsistent_.size();
+  return n;
+}
+
+bool Refiner::stale(const Configuration& c, std::size_t round_start) const {
+  bool hit = false;
+  index_.for_each_in_ball(c.centre, c.radius2 * (1 + kMargin), [&](std::size_t i, double) {
+    if (i >= round_start) hit = true;
+  });
+  return hit;
+}
+
+std::optional<Eigen::VectorXd> Refiner::produce(const Configuration& c, RuleStats& st) {
+  if (c.rule != Rule::big) return pick_valid(c, st);
+  // Rule 1: ψ_p(c_p(σ)).
+  const auto p = R_.points.point(c.p);
+  auto frame = M_.frame(p);
+  if (!frame) return std::nullopt;
+  Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
+  auto x = M_.psi(p, *frame, centre);
+  if (x && (*x - centre).norm() <= std::sqrt(c.radius2) && M_.on_selected_component(as_span(*x))) return x;
+  ++st.psi_failures;
+  auto y = M_.project(c.centre);
+  if (y && M_.on_selected_component(as_span(*y))) return y;
+  return std::nullopt;
+}
+
+std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleStats& st) {
+  const auto p = R_.points.point(c.p);
+  auto frame = M_.frame(p);
+  if (!frame) return std::nullopt;
+  PickingRegion region;
+  region.centre = Eigen::Map<const Eigen::VectorXd>(c.centre.data(), N_);
+  const double Rp = std::sqrt(c.radius2);
+  region.radius = P_.alpha * Rp;
+  region.tangent = planes_.matrix(c.p);
+  HittingQuery hq;
+  hq.radius_bound = P_.beta * Rp;
+  hq.gamma0 = P_.gamma0;
+  hq.delta0 = P_.delta0;
+  hq.max_set_size = m_ + 1;
+  const double sparse2 = mu0_eps_ * mu0_eps_;
+  // Practical fallback when every candidate is rejected: the best one seen, preferring those
+  // farther than μ0 ε (rejected for a hitting set only), then the farthest from the points.
+  std::optional<Eigen::VectorXd> best;
+  double best_d2 = -1;
+  bool best_sparse = false;
+  for (int attempt = 0; attempt < P_.pick_attempts; ++attempt) {
+    ++st.candidates;
+    auto x = pick_in_region(M_, p, *frame, region, *rng_, Rp);
+    if (!x) {
+      ++st.psi_failures;
+      continue;
+    }
+    const double d2 = index_.nearest_distance2(as_span(*x));
+    if (!(d2 > 0)) continue;  // on an existing point
+    const bool sparse_ok = paper_ || d2 > sparse2;
+    if (sparse_ok) {
+      if (!find_hitting_set(as_span(*x), R_.points, index_, hq)) return x;  // a good point
+      ++st.rejected_hit;
+    } else {
+      ++st.rejected_sparse;
+    }
+    if (!paper_ && (!best || (sparse_ok && !best_sparse) || (sparse_ok == best_sparse && d2 > best_d2))) {
+      best = x;
+      best_d2 = d2;
+      best_sparse = sparse_ok;
+    }
+  }
+  if (best) ++st.fallbacks;
+  return best;
+}
+
+bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
+  std::size_t nn = 0;
+  const double d2 = index_.nearest_distance2(as_span(x), &nn);
+  if (!(d2 > 0)) return false;  // never insert a duplicate point
+  const std::size_t id = R_.points.size();
+  const double d = std::sqrt(d2);
+  if (d < mu0_eps_) R_.sparsity_violations.push_back({id, nn, d, rule});
+  if (R_.inserted_by.empty() || d < R_.final.min_inserted_distance) R_.final.min_inserted_distance = d;
+  R_.points.push_back(as_span(x));
+  index_.push_back(as_span(x));
+  R_.inserted_by.push_back(rule);
+  R_.rules[static_cast<int>(rule)].inserted++;
+  return true;
+}
+
+bool Refiner::new_star_is_big(std::size_t x) {
+  tangential::extend_tangent_planes(M_, R_.points, planes_);
+  paper_index_.extend(R_.points);
+  std::vector<tangential::Star> tmp;
+  std::vector<std::size_t> which{x};
+  tangential::compute_stars(R_.points, planes_, paper_index_, which, tmp, {});
+  const auto& st = tmp[x];
+  if (!st.closed) return true;
+  for (double r2 : st.radii2)
+    if (is_big(r2)) return true;
+  return false;
+}
+
+std::vector<std::size_t> Refiner::cosph_affected(std::size_t round_start) const {
+  std::vector<char> mark(R_.points.size(), 0);
+  const double d2 = P_.delta0 * P_.delta0;
+  const double floor2 = paper_ ? 0.0 : mu0_eps_ * mu0_eps_;
+  const double R2 = max_radius2_;
+  const double reach = std::sqrt(R2) + std::sqrt(R2 * (1 + 4 * d2) + d2 * floor2 + kMargin * R2) * (1 + kMargin);
+  for (std::size_t x = round_start; x < R_.points.size(); ++x) {
+    const auto px = R_.points.point(x);
+    index_.for_each_in_ball(px, reach * reach, [&](std::size_t p, double) {
+      if (p >= round_start || mark[p]) return;
+      const tangential::Star& st = tc_.star(p);
+      for (std::size_t c = 0; c < st.size(); ++c) {
+        const double r2 = st.radii2[c];
+        const double bound = r2 + d2 * std::max(4 * r2, floor2);
+        if (squared_distance(px, st.centre(c)) <= bound * (1 + kMargin) + kMargin * r2) {
+          mark[p] = 1;
+          break;
+        }
+      }
+    });
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t p = 0; p < mark.size(); ++p)
+    if (mark[p]) out.push_back(p);
+  return out;
+}
+
+RefineResult Refiner::run() {
+  const auto t_start = Clock::now();
+  star_options_.threads = P_.threads;
+  {
+    const auto t = Clock::now();
+    planes_ = tangential::compute_tangent_planes(M_, R_.points, P_.threads);
+    tc_ = tangential::TangentialComplex(R_.points, planes_, star_options_);
+    R_.star_seconds += seconds_since(t);
+  }
+  setup_eps();
+  {
+    HypothesesInput hi;
+    hi.m = m_;
+    hi.eps = R_.eps;
+    hi.gamma0 = P_.gamma0;
+    hi.alpha = P_.alpha;
+    hi.beta = P_.beta;
+    hi.delta0 = P_.delta0;
+    hi.gamma0_text = P_.gamma0_text;
+    hi.delta0_text = P_.delta0_text;
+    if (M_.spec().reach) {
+      hi.reach = std::sqrt(M_.spec().reach->squared.get_d());
+      hi.reach_is_lower_bound = !M_.spec().reach->exact;
+    }
+    R_.hypotheses = evaluate_hypotheses(hi);
+  }
+  index_ = PointIndex(R_.points);
+  if (paper_) paper_index_ = tangential::NeighbourIndex(R_.points);
+  {
+    const auto t = Clock::now();
+    std::vector<std::size_t> all(R_.points.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    update_consistency(all);
+    recompute_configurations(all);
+    R_.configuration_seconds += seconds_since(t);
+    R_.initial_inconsistent_simplices = inconsistent_.size();
+    std::vector<char> touched(R_.points.size(), 0);
+    for (const CellKey& key : inconsistent_) {
+      const auto it = masks_.find(key);
+      for (int i = 0; i <= m_; ++i)
+        if (it != masks_.end() && (it->second & (1u << i))) touched[key.v[i]] = 1;
+    }
+    R_.initial_inconsistent_stars = static_cast<std::size_t>(std::count(touched.begin(), touched.end(), 1));
+    R_.initial_configurations = pending();
+  }
+  R_.stop_reason = "converged";
+  for (;;) {
+    max_radius2_ = 0;
+    open_stars_ = 0;
+    for (std::size_t p = 0; p < tc_.size(); ++p) {
+      max_radius2_ = std::max(max_radius2_, tc_.star(p).max_radius2);
+      if (!tc_.star(p).closed) ++open_stars_;
+    }
+    const auto counts = pending();
+    if (P_.progress) {
+      RefineProgress pr;
+      pr.round = R_.rounds;
+      pr.points = R_.points.size();
+      pr.inserted = R_.points.size() - R_.input_size;
+      pr.pending = counts;
+      P_.progress(pr);
+    }
+    const bool big = counts[0] > 0;
+    const bool rule2 = counts[1] + counts[2] > 0;
+    const bool practical_more = !paper_ && (counts[3] + counts[4] > 0);
+    if (!big && !rule2 && !practical_more) {
+      if (open_stars_ > 0) R_.stop_reason = "stalled";
+      break;
+    }
+    if (R_.rounds >= P_.max_rounds) {
+      R_.stop_reason = "max_rounds";
+      break;
+    }
+    if (P_.time_limit > 0 && seconds_since(t_start) > P_.time_limit) {
+      R_.stop_reason = "time_limit";
+      break;
+    }
+    ++R_.rounds;
+    // The round's configurations, in canonical order.
+    std::vector<Configuration> batch;
+    auto take = [&](Rule r) {
+      for (const auto& v : configs_)
+        for (const auto& c : v)
+          if (c.rule == r) batch.push_back(c);
+    };
+    if (big) {
+      take(Rule::big);
+    } else {
+      take(Rule::bad_star);
+      take(Rule::bad_cosph);
+      if (!paper_) {
+        take(Rule::unprotected);
+        auto inc = inconsistent_configurations();
+        batch.insert(batch.end(), std::make_move_iterator(inc.begin()), std::make_move_iterator(inc.end()));
+      }
+    }
+    std::sort(batch.begin(), batch.end(), canonical_less);
+    const std::size_t round_start = R_.points.size();
+    bool capped = false;
+    for (const Configuration& c : batch) {
+      RuleStats& st = R_.rules[static_cast<int>(c.rule)];
+      if (R_.points.size() - R_.input_size >= P_.max_inserted) {
+        capped = true;
+        break;
+      }
+      if (stale(c, round_start)) {
+        ++st.skipped_stale;
+        continue;
+      }
+      const auto t = Clock::now();
+      auto x = produce(c, st);
+      bool ok = x && insert(*x, c.rule);
+      if (ok)
+        ++st.applied;
+      else
+        ++st.failures;
+      bool stop = false;
+      if (ok && paper_ && c.rule != Rule::big) stop = new_star_is_big(R_.points.size() - 1);
+      st.seconds += seconds_since(t);
+      if (stop) break;
+      if (P_.time_limit > 0 && seconds_since(t_start) > P_.time_limit) break;
+    }
+    const std::size_t added = R_.points.size() - round_start;
+    if (added == 0) {
+      R_.stop_reason = capped ? "max_inserted" : "stalled";
+      break;
+    }
+    {
+      const auto t = Clock::now();
+      tangential::extend_tangent_planes(M_, R_.points, planes_);
+      std::vector<std::size_t> changed = tc_.insert(R_.points, planes_, star_options_);
+      R_.star_seconds += seconds_since(t);
+      const auto t2 = Clock::now();
+      update_consistency(changed);
+      std::vector<std::size_t> affected = cosph_affected(round_start);
+      std::vector<std::size_t> dirty;
+      std::set_union(changed.begin(), changed.end(), affected.begin(), affected.end(), std::back_inserter(dirty));
+      recompute_configurations(dirty);
+      R_.configuration_seconds += seconds_since(t2);
+    }
+    if (capped) {
+      R_.stop_reason = "max_inserted";
+      break;
+    }
+  }
+  R_.converged = R_.stop_reason == "converged";
+  measure();
+  R_.parameters = P_;
+  R_.parameters.progress = nullptr;
+  R_.parameters.eps = R_.eps;
+  R_.total_seconds = seconds_since(t_start);
+  return std::move(R_);
+}
+
+void Refiner::measure() {
+  FinalMeasures& f = R_.final;
+  const double min_inserted = f.min_inserted_distance;
+  f = FinalMeasures{};
+  f.min_inserted_distance = R_.inserted_by.empty() ? 0.0 : min_inserted;
+  auto assembly = tc_.assemble(P_.threads);
+  R_.complex = std::move(assembly.complex);
+  f.stars = tc_.size();
+  f.star_cells = assembly.star_cells;
+  f.complex_simplices = R_.complex.simplices.size();
+  f.inconsistent_simplices = assembly.inconsistent.size();
+  f.remaining = pending();
+  f.remaining[static_cast<int>(Rule::inconsistent)] = assembly.inconsistent.size();
+  const int k = m_ + 1;
+  const double dcheck2 = P_.delta0 * P_.delta0 * mu0_eps_ * mu0_eps_;
+  std::set<CellKey> inconsistent;
+  for (const auto& s : assembly.inconsistent) inconsistent.insert(make_key(s));
+  f.min_thickness = 1;
+  f.min_face_thickness_ratio = std::numeric_limits<double>::infinity();
+  f.min_protection = std::numeric_limits<double>::infinity();
+  double max_r2 = 0;
+  const tangential::NeighbourIndex& nidx = tc_.index();
+  std::vector<std::pair<double, std::size_t>> nn;
+  for (std::size_t p = 0; p < tc_.size(); ++p) {
+    const tangential::Star& st = tc_.star(p);
+    if (!st.closed) ++f.open_stars;
+    bool inc = false;
+    for (std::size_t c = 0; c < st.size(); ++c) {
+      const auto cell = st.cell(c);
+      if (!inconsistent.empty() && inconsistent.count(make_key(cell))) inc = true;
+      max_r2 = std::max(max_r2, st.radii2[c]);
+      auto g = make_simplex(R_.points, cell);
+      f.min_thickness = std::min(f.min_thickness, g.thickness());
+      f.min_face_thickness_ratio = std::min(f.min_face_thickness_ratio, g.goodness_ratio(P_.gamma0));
+      nidx.nearest(st.centre(c), static_cast<std::size_t>(k + 4), nn);
+      for (const auto& [d2, q] : nn)
+        if (std::find(cell.begin(), cell.end(), static_cast<int>(q)) == cell.end()) {
+          f.min_protection = std::min(f.min_protection, d2 - st.radii2[c]);
+          break;
+        }
+    }
+    if (inc) ++f.inconsistent_stars;
+  }
+  f.max_radius = std::sqrt(max_r2);
+  f.min_protection_ratio = dcheck2 > 0 ? f.min_protection / dcheck2 : std::numeric_limits<double>::infinity();
+  double md2 = std::numeric_limits<double>::infinity(), in2 = md2;
+  for (std::size_t p = 0; p < R_.points.size(); ++p) {
+    nidx.nearest(R_.points.point(p), 2, nn);
+    for (const auto& [d2, q] : nn)
+      if (q != p) {
+        md2 = std::min(md2, d2);
+        break;
+      }
+  }
+  {  // the input alone
+    io::PointSet in;
+    in.dimension = R_.points.dimension;
+    in.coordinates.assign(R_.points.coordinates.begin(), R_.points.coordinates.begin() + R_.input_size * R_.points.dimension);
+    tangential::NeighbourIndex ii(in);
+    for (std::size_t p = 0; p < in.size(); ++p) {
+      ii.nearest(in.point(p), 2, nn);
+      for (const auto& [d2, q] : nn)
+        if (q != p) {
+          in2 = std::min(in2, d2);
+          break;
+        }
+    }
+  }
+  f.min_distance = std::sqrt(md2);
+  f.input_min_distance = std::sqrt(in2);
+  f.consistent = f.inconsistent_simplices == 0 && f.open_stars == 0;
+  f.all_good = std::isinf(f.min_face_thickness_ratio) || f.min_face_thickness_ratio >= 1;
+  f.all_small = f.max_radius < R_.eps * (1 - kMargin) && f.open_stars == 0;
+  f.protected_claim = f.min_protection > dcheck2 * (1 + kMargin);
+}
+
+}  // namespace
+
+RefineResult refine(const Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters) {
+  Refiner r(manifold, input, parameters);
+  return r.run();
+}
+
+}  // namespace delcert::refine

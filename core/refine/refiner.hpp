@@ -1,0 +1,181 @@
+// The refiner: the paper's Algorithm 1 (§4.2) on the tangential Delaunay complex, and the
+// practical mode that adds the rules a realistic ε needs (DESIGN §2 "Refinement", issue 6).
+//
+// Configurations, by rule (the canonical processing order is (rule, point, cell, apex)):
+//   big           Rule 1: a star cell σ ∈ star(p) with R_p(σ) >= ε       -> insert ψ_p(c_p(σ))
+//   bad_star      Rule 2: a Γ0-bad σ ∈ star(p) with R_p(σ) < ε           -> insert Pick_valid(σ, p)
+//   bad_cosph     Rule 2: a Γ0-bad (m+1)-simplex q * σ of cosph(p)       -> insert Pick_valid(q * σ, p)
+//   unprotected   practical only: a Γ0-good q * σ of cosph(p)            -> insert Pick_valid(σ, p)
+//   inconsistent  practical only: σ in star(p) but not in star(q), q ∈ σ  -> insert Pick_valid(σ, p*)
+//                 where p* is the vertex whose star holds σ with the largest R_p*(σ)
+//
+// Paper mode is exactly Algorithm 1: Rule 1 is applied while a big configuration exists, Rule 2
+// only when none does. Each round takes every configuration of the rule that applies, sorted
+// canonically, and applies them one after the other; a configuration is applied only if it is
+// still a configuration of the current complex, i.e. no point inserted earlier in the round lies
+// in its Delaunay ball B(c_p(σ), R_p(σ)) (a star cell with an empty ball stays, with the same
+// c_p and R_p; cosph membership and Γ0-badness do not depend on other points). After a Rule 2
+// insertion x, the star of x alone is computed: if it has a big cell, the round stops so that
+// Rule 1 comes first again (the stars of older points cannot gain big cells: their restricted
+// Voronoi cells only shrink). So every run is an execution of Algorithm 1, with two bounded
+// stand-ins for the paper's unbounded steps: Pick_valid draws at most `pick_attempts` candidates
+// per configuration and round (the paper loops until it finds a good point; a configuration
+// left over is tried again next round, and a round that inserts nothing stops the run as
+// "stalled"), and Rule 1 uses the closest point of M to c_p(σ) when ψ_p(c_p(σ)) fails.
+// "Converged" means that no rule applies any more; in paper mode that says nothing about
+// consistency or protection, which report.json measures separately.
+//
+// Practical mode (default) also needs, at realistic ε, to end with consistent stars and empty
+// cosph(p) (so the output is what the certifier checks):
+//   - unprotected: a Γ0-good q * σ in cosph(p) leaves σ unprotected; the paper proves such
+//     simplices cannot exist under H0-H5, at realistic ε they do. Inserting in σ's picking
+//     region kills σ (the point lands inside its Delaunay ball).
+//   - inconsistent: the paper's theorem makes stars consistent once they are thick and
+//     protected with ε tiny against the reach; at realistic ε some are not. Inserting in the
+//     picking region of σ at p* kills σ in star(p*) (as in Boissonnat-Ghosh's manifold meshing,
+//     where inconsistent configurations are refined through their picking regions).
+//   - cosph is taken with the bound δ0^2 max(L(q * σ), μ0 ε)^2 instead of δ0^2 L(q * σ)^2 and
+//     counts points on or inside the ball too: an empty cosph then implies the claimed
+//     δ̌^2 = δ0^2 (μ0 ε)^2 protection even on inputs denser than μ0 ε (random samples).
+//   - Pick_valid also rejects candidates closer than μ0 ε to a point (the sparsity invariant of
+//     the paper's termination theorem, enforced instead of inferred) and, after `pick_attempts`
+//     rejections, falls back to the best candidate seen (farther than μ0 ε if any, then the
+//     farthest from the points); a fallback closer than μ0 ε is counted as a sparsity
+//     violation, never hidden.
+//   - the decisions use small safety margins (relative 1e-9) on the side of "refine more", so
+//     that the exact certifier agrees with the double-precision producer.
+// One round in practical mode applies Rule 1 alone if it has configurations, and otherwise all
+// other rules in one canonical sequence.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/io/complex.hpp"
+#include "core/io/points.hpp"
+#include "core/manifold/manifold.hpp"
+#include "core/refine/hypotheses.hpp"
+
+namespace delcert::refine {
+
+enum class RefineMode { practical, paper };
+const char* to_string(RefineMode m);
+
+enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4 };
+inline constexpr int kNumRules = 5;
+const char* to_string(Rule r);
+
+struct RefineProgress {
+  std::size_t round = 0;
+  std::size_t points = 0;
+  std::size_t inserted = 0;
+  std::array<std::size_t, kNumRules> pending{};  // configurations per rule at the start of the round
+};
+
+struct RefineParameters {
+  RefineMode mode = RefineMode::practical;
+  double eps = 0;       // <= 0: derived from the input (see RefineResult::eps_derived)
+  double gamma0 = 0.1;
+  double alpha = 0.3;
+  double beta = 1.1;
+  double delta0 = -1;   // < 0: default_delta0(gamma0, m), the largest power of Γ0 that satisfies H3
+  // Optional exact rational text of gamma0 and delta0 (what the user typed), for deciding H3
+  // exactly in the hypotheses report.
+  std::string gamma0_text, delta0_text;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  // Caps: the run stops (not converged) when it would insert more than max_inserted points or
+  // start round max_rounds + 1. 0: max_inserted = 20 * #input + 20000, max_rounds = 2000.
+  std::size_t max_inserted = 0;
+  std::size_t max_rounds = 0;
+  // Pick_valid draws at most this many candidates per configuration (0: 200 in practical mode,
+  // 2000 in paper mode, where a configuration without a good point found stays for a later round).
+  int pick_attempts = 0;
+  // Wall-clock limit in seconds (0: none). For benchmarks: a run stopped by it is not
+  // reproducible and is marked so.
+  double time_limit = 0;
+  // Called after every round (from the calling thread).
+  std::function<void(const RefineProgress&)> progress;
+};
+
+struct RuleStats {
+  std::size_t inserted = 0;          // points inserted by the rule
+  std::size_t applied = 0;           // configurations for which a point was produced
+  std::size_t skipped_stale = 0;     // configurations killed earlier in the same round
+  std::size_t candidates = 0;        // Pick_valid candidates drawn
+  std::size_t rejected_hit = 0;      // ... rejected because a hitting set exists
+  std::size_t rejected_sparse = 0;   // ... rejected because closer than μ0 ε to a point (practical)
+  std::size_t psi_failures = 0;      // ... where ψ_p failed
+  std::size_t fallbacks = 0;         // configurations where Pick_valid gave up and took the best candidate
+  std::size_t failures = 0;          // configurations where no point could be produced
+  double seconds = 0;                // time spent producing the points of this rule
+};
+
+struct SparsityViolation {
+  std::size_t point = 0;    // the inserted point
+  std::size_t nearest = 0;  // its nearest point at insertion time
+  double distance = 0;
+  Rule rule = Rule::big;
+};
+
+struct FinalMeasures {
+  std::size_t stars = 0, star_cells = 0, complex_simplices = 0;
+  std::size_t open_stars = 0;                 // stars whose power cell is unbounded
+  std::size_t inconsistent_simplices = 0;     // distinct simplices missing from a vertex's star
+  std::size_t inconsistent_stars = 0;         // stars holding at least one inconsistent simplex
+  std::array<std::size_t, kNumRules> remaining{};  // configurations left, per rule (all five, any mode)
+  double max_radius = 0;                      // max R_p(σ) over star cells
+  double min_thickness = 1;                   // min Υ over star cells (m-simplices)
+  double min_face_thickness_ratio = 0;        // min over faces t (dim >= 2) of star cells of Υ(t) / Γ0^dim(t)
+  double min_protection = 0;                  // min over star cells and q ∉ σ of ||c_p(σ) - q||^2 - R_p(σ)^2
+  double min_protection_ratio = 0;            // min_protection / δ̌^2
+  double min_distance = 0;                    // smallest distance between two points
+  double input_min_distance = 0;              // the same over the input points
+  double min_inserted_distance = 0;           // smallest distance of an inserted point to the points before it
+  bool consistent = false, all_good = false, all_small = false, protected_claim = false;
+};
+
+struct RefineResult {
+  io::PointSet points;           // the input points first, in their order, then the inserted ones
+  std::size_t input_size = 0;
+  std::vector<Rule> inserted_by;  // per inserted point
+  io::Complex complex;           // the union of the stars
+  double eps = 0;
+  bool eps_derived = false;      // eps came from the input's largest R_p (then eps_text is its decimal)
+  std::string eps_text;
+  bool converged = false;
+  std::string stop_reason;       // "converged", "max_inserted", "max_rounds", "stalled", "time_limit"
+  std::size_t rounds = 0;
+  std::array<RuleStats, kNumRules> rules{};
+  std::vector<SparsityViolation> sparsity_violations;
+  std::size_t initial_inconsistent_simplices = 0;  // in the input's complex
+  std::size_t initial_inconsistent_stars = 0;      // stars of the input holding an inconsistent simplex
+  std::array<std::size_t, kNumRules> initial_configurations{};  // per rule, in the input's complex
+  double star_seconds = 0;           // initial complex and incremental star updates
+  double configuration_seconds = 0;  // finding configurations (cosph, thickness, consistency)
+  double total_seconds = 0;
+  FinalMeasures final;
+  HypothesesReport hypotheses;
+  RefineParameters parameters;   // as used: caps and attempts resolved, eps set, no progress callback
+};
+
+// Refines `input` (points on M) with the given parameters. Throws std::invalid_argument on bad
+// parameters (and names the parameter), std::domain_error when a point is not a regular point
+// of M.
+RefineResult refine(const Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters);
+
+// The decimal with two significant digits just above x (x > 0), as text: 0.4712 -> "0.48".
+std::string decimal_above(double x);
+
+// The default δ0: Γ0^ceil((m+1)/2), so that δ0^2 <= Γ0^(m+1) (hypothesis H3). H3 keeps an
+// elementary weight from moving a weighted centre by more than the simplex's own size
+// (Lemma 4.1 (3)); with a larger δ0 almost every nearby (m+1)-simplex becomes a hitting set at
+// realistic ε and Pick_valid rejects nearly every candidate. As exact rational text.
+std::string default_delta0(const std::string& gamma0, int m);
+
+}  // namespace delcert::refine

@@ -1,0 +1,296 @@
+// The refinement loop: each rule triggered by a constructed input, the sparsity invariant, and
+// CI-sized runs whose outputs are checked against a fresh, independent recomputation.
+#include "core/refine/refiner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/io/points.hpp"
+#include "core/io/spec.hpp"
+#include "core/refine/simplex_measures.hpp"
+#include "core/sampling/sampling.hpp"
+#include "core/tangential/tangent_planes.hpp"
+#include "core/tangential/tangential_complex.hpp"
+#include "tests/test_support.hpp"
+
+namespace delcert::refine {
+namespace {
+
+Manifold builtin(const std::string& name) { return Manifold(io::read_spec("builtin:" + name)); }
+
+io::PointSet net(const Manifold& M, double eps, std::uint64_t seed = 1) {
+  EpsNetOptions o;
+  o.eps = eps;
+  o.seed = seed;
+  return eps_net(M, o).points;
+}
+
+double dist(std::span<const double> a, std::span<const double> b) {
+  double s = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) s += (a[j] - b[j]) * (a[j] - b[j]);
+  return std::sqrt(s);
+}
+
+// What the output promises, recomputed from scratch: a fresh tangential complex of the output
+// points (not the refiner's incrementally updated one) must equal the output complex and be
+// consistent; every star cell has R_p < eps and is Γ0-good; every star cell is power-protected
+// by more than δ0^2 (eps/9)^2 against every other point (brute force); every inserted point is
+// farther than eps/9 from the points before it.
+void expect_certified_by_own_measure(const Manifold& M, const RefineResult& r) {
+  const auto& P = r.parameters;
+  auto planes = tangential::compute_tangent_planes(M, r.points);
+  tangential::TangentialComplex tc(r.points, planes);
+  auto a = tc.assemble();
+  EXPECT_TRUE(a.inconsistent.empty()) << a.inconsistent.size() << " inconsistent simplices";
+  EXPECT_EQ(a.complex.simplices, r.complex.simplices);
+  const double dcheck2 = P.delta0 * P.delta0 * (r.eps / 9) * (r.eps / 9);
+  std::size_t cells = 0;
+  for (std::size_t p = 0; p < tc.size(); ++p) {
+    const auto& st = tc.star(p);
+    ASSERT_TRUE(st.closed);
+    for (std::size_t c = 0; c < st.size(); ++c, ++cells) {
+      const auto cell = st.cell(c);
+      EXPECT_LT(std::sqrt(st.radii2[c]), r.eps);
+      EXPECT_TRUE(make_simplex(r.points, cell).is_good(P.gamma0)) << "star " << p << " cell " << c;
+      double worst = INFINITY;
+      for (std::size_t q = 0; q < r.points.size(); ++q) {
+        if (std::find(cell.begin(), cell.end(), static_cast<int>(q)) != cell.end()) continue;
+        const double d = dist(st.centre(c), r.points.point(q));
+        worst = std::min(worst, d * d - st.radii2[c]);
+      }
+      EXPECT_GT(worst, dcheck2) << "star " << p << " cell " << c;
+    }
+  }
+  EXPECT_GT(cells, 0u);
+  for (std::size_t i = r.input_size; i < r.points.size(); ++i) {
+    double d = INFINITY;
+    for (std::size_t j = 0; j < i; ++j) d = std::min(d, dist(r.points.point(i), r.points.point(j)));
+    EXPECT_GT(d, r.eps / 9) << "inserted point " << i;
+  }
+  EXPECT_TRUE(r.sparsity_violations.empty());
+  EXPECT_TRUE(r.final.consistent && r.final.all_good && r.final.all_small && r.final.protected_claim);
+  for (std::size_t i = r.input_size; i < r.points.size(); ++i) EXPECT_LT(M.residual(r.points.point(i)), 1e-12);
+}
+
+std::size_t inserted(const RefineResult& r, Rule rule) { return r.rules[static_cast<int>(rule)].inserted; }
+
+TEST(Refiner, RuleOneInsertsAtTheCentresOfBigCells) {
+  // The octahedron's vertices on S^2: every star cell has R_p ≈ 0.8, far above eps = 0.5.
+  Manifold M = builtin("sphere-2");
+  io::PointSet octa;
+  octa.dimension = 3;
+  for (int i = 0; i < 3; ++i)
+    for (double s : {1.0, -1.0}) {
+      std::vector<double> v(3, 0.0);
+      v[i] = s;
+      octa.push_back(v);
+    }
+  for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
+    RefineParameters p;
+    p.mode = mode;
+    p.eps = 0.5;
+    auto r = refine(M, octa, p);
+    EXPECT_TRUE(r.converged) << r.stop_reason;
+    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::big)], 0u);
+    EXPECT_GT(inserted(r, Rule::big), 0u);
+    EXPECT_LT(r.final.max_radius, 0.5);
+    EXPECT_EQ(r.input_size, 6u);
+    for (std::size_t i = 0; i < 6 * 3; ++i) EXPECT_EQ(r.points.coordinates[i], octa.coordinates[i]);  // input first
+    if (mode == RefineMode::practical) expect_certified_by_own_measure(M, r);
+  }
+}
+
+TEST(Refiner, RuleTwoRefinesSliversInTheStars) {
+  // An eps-net of S^3 has slivers: with Γ0 = 0.25 tetrahedra need thickness >= 0.0156.
+  Manifold M = builtin("sphere-3");
+  auto pts = net(M, 0.3);
+  for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
+    RefineParameters p;
+    p.mode = mode;
+    p.eps = 0.3;
+    p.gamma0 = 0.25;
+    auto r = refine(M, pts, p);
+    EXPECT_TRUE(r.converged) << r.stop_reason;
+    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::bad_star)], 0u);
+    EXPECT_GT(inserted(r, Rule::bad_star), 0u);
+    EXPECT_TRUE(r.final.all_good);
+    EXPECT_GE(r.final.min_face_thickness_ratio, 1.0);
+    if (mode == RefineMode::practical) expect_certified_by_own_measure(M, r);
+  }
+}
+
+// A square grid of angles on the flat torus: every grid square is a rectangle in R^4, four
+// cocircular and coplanar points, so q * σ is a flat (Γ0-bad) quasi-cospherical 3-simplex with
+// power exactly 0 (up to rounding): Rule 2 on cosph.
+io::PointSet torus_grid(int n) {
+  io::PointSet ps;
+  ps.dimension = 4;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double a = 2 * std::numbers::pi * i / n, b = 2 * std::numbers::pi * j / n;
+      ps.push_back(std::vector<double>{std::cos(a), std::sin(a), std::cos(b), std::sin(b)});
+    }
+  return ps;
+}
+
+TEST(Refiner, RuleTwoBreaksQuasiCosphericalSimplices) {
+  Manifold M = builtin("clifford-torus-2");
+  auto grid = torus_grid(14);
+  for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
+    RefineParameters p;
+    p.mode = mode;
+    auto r = refine(M, grid, p);
+    EXPECT_TRUE(r.converged) << r.stop_reason;
+    EXPECT_TRUE(r.eps_derived);
+    EXPECT_EQ(r.eps_text, "0.33");  // two digits above the grid's R_p = 0.3204
+    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::bad_cosph)], 0u);
+    EXPECT_GT(inserted(r, Rule::bad_cosph), 0u);
+    EXPECT_EQ(r.final.remaining[static_cast<int>(Rule::bad_cosph)], 0u);
+    if (mode == RefineMode::practical) expect_certified_by_own_measure(M, r);
+  }
+}
+
+TEST(Refiner, PickValidRejectsHitCandidates) {
+  // With δ0 = 0.1 (H3 violated) nearly every nearby 4-simplex of S^3 can be weighted into a
+  // hitting set: most candidates are rejected, the good ones are inserted.
+  Manifold M = builtin("sphere-3");
+  auto pts = net(M, 0.4);
+  RefineParameters p;
+  p.mode = RefineMode::paper;
+  p.eps = 0.4;
+  p.delta0 = 0.1;
+  auto r = refine(M, pts, p);
+  const auto& st = r.rules[static_cast<int>(Rule::bad_cosph)];
+  EXPECT_GT(st.rejected_hit, 0u);
+  EXPECT_GT(st.inserted, 0u);
+  EXPECT_EQ(st.candidates, st.rejected_hit + st.psi_failures + st.inserted) << "every candidate is rejected or inserted";
+  // With one attempt per configuration, paper mode gives up on configurations whose only
+  // candidate is hit, and stops when a round inserts nothing.
+  p.pick_attempts = 1;
+  auto r1 = refine(M, pts, p);
+  EXPECT_GT(r1.rules[static_cast<int>(Rule::bad_cosph)].failures, 0u);
+}
+
+TEST(Refiner, InconsistencyRuleMakesTheStarsAgree) {
+  Manifold M = builtin("clifford-torus-2");
+  auto pts = net(M, 0.25);
+  RefineParameters p;
+  p.eps = 0.25;
+  p.mode = RefineMode::paper;
+  auto paper = refine(M, pts, p);
+  EXPECT_TRUE(paper.converged);
+  EXPECT_GT(paper.final.inconsistent_simplices, 0u);  // Algorithm 1 alone leaves some at this eps
+  p.mode = RefineMode::practical;
+  auto practical = refine(M, pts, p);
+  EXPECT_TRUE(practical.converged);
+  EXPECT_GT(inserted(practical, Rule::inconsistent), 0u);
+  EXPECT_EQ(practical.final.inconsistent_simplices, 0u);
+  expect_certified_by_own_measure(M, practical);
+}
+
+TEST(Refiner, UnprotectedRuleFiresOnSO3) {
+  Manifold M = builtin("so3");
+  auto pts = net(M, 0.6);
+  RefineParameters p;
+  p.eps = 0.6;
+  p.threads = 2;
+  auto r = refine(M, pts, p);
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_GT(inserted(r, Rule::unprotected), 0u);
+  EXPECT_GT(inserted(r, Rule::inconsistent), 0u);
+  expect_certified_by_own_measure(M, r);
+}
+
+struct CiCase {
+  const char* manifold;
+  double eps;
+};
+
+class CiSizedRefinement : public ::testing::TestWithParam<CiCase> {};
+
+TEST_P(CiSizedRefinement, OutputIsConsistentGoodAndProtected) {
+  Manifold M = builtin(GetParam().manifold);
+  RefineParameters p;
+  p.eps = GetParam().eps;
+  auto r = refine(M, net(M, p.eps), p);
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_EQ(r.stop_reason, "converged");
+  expect_certified_by_own_measure(M, r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Builtins, CiSizedRefinement,
+                         ::testing::Values(CiCase{"clifford-torus-2", 0.25}, CiCase{"sphere-2", 0.2},
+                                           CiCase{"torus-of-revolution", 0.3}, CiCase{"sphere-3", 0.3}),
+                         [](const auto& info) {
+                           std::string s = info.param.manifold;
+                           for (auto& c : s)
+                             if (c == '-') c = '_';
+                           return s;
+                         });
+
+TEST(Refiner, SameSeedSameOutputForAnyThreadCount) {
+  Manifold M = builtin("clifford-torus-2");
+  auto grid = torus_grid(12);
+  RefineParameters p;
+  p.seed = 7;
+  p.threads = 1;
+  auto a = refine(M, grid, p);
+  p.threads = 2;
+  auto b = refine(M, grid, p);
+  EXPECT_EQ(a.points.coordinates, b.points.coordinates);
+  EXPECT_EQ(a.complex.simplices, b.complex.simplices);
+  p.seed = 8;
+  auto c = refine(M, grid, p);
+  EXPECT_NE(a.points.coordinates, c.points.coordinates);  // the picks depend on the seed
+}
+
+TEST(Refiner, CapsStopTheRunAndSaySo) {
+  Manifold M = builtin("sphere-2");
+  auto pts = net(M, 0.3);
+  RefineParameters p;
+  p.eps = 0.2;
+  p.max_inserted = 3;
+  auto r = refine(M, pts, p);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.stop_reason, "max_inserted");
+  EXPECT_EQ(r.points.size() - r.input_size, 3u);
+  EXPECT_FALSE(r.final.all_small);
+  p.max_inserted = 0;
+  p.max_rounds = 1;
+  auto r2 = refine(M, pts, p);
+  EXPECT_FALSE(r2.converged);
+  EXPECT_EQ(r2.stop_reason, "max_rounds");
+  EXPECT_EQ(r2.rounds, 1u);
+}
+
+TEST(Refiner, ParametersAreValidated) {
+  Manifold M = builtin("sphere-2");
+  auto pts = net(M, 0.5);
+  RefineParameters p;
+  p.eps = 0.5;
+  p.gamma0 = 0;
+  EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
+  p.gamma0 = 0.1;
+  p.alpha = 1.5;
+  EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
+  p.alpha = 0.3;
+  p.delta0 = 1;
+  EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
+}
+
+TEST(Refiner, DecimalAboveAndDefaultDelta0) {
+  EXPECT_EQ(decimal_above(0.4712), "0.48");
+  EXPECT_EQ(decimal_above(0.47), "0.48");
+  EXPECT_EQ(decimal_above(3.2), "3.3");
+  EXPECT_EQ(decimal_above(0.00999), "0.01");
+  EXPECT_EQ(decimal_above(12.0), "13");
+  EXPECT_EQ(default_delta0("0.1", 2), "0.01");
+  EXPECT_EQ(default_delta0("0.1", 3), "0.01");
+  EXPECT_EQ(default_delta0("1/5", 4), "0.008");
+}
+
+}  // namespace
+}  // namespace delcert::refine
