@@ -424,14 +424,16 @@ Certificate run_certify(const CertifyOptions& o) {
   watch.record(C, "assemble_checks_3_4_6_10");
 
   // Check 5: thickness.
-  ThicknessResult thick = check_thickness(P, K, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter);
+  // One face lattice for checks 5 and 8.
+  const FaceLattice lattice = face_lattice(K.simplices);
+  ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter);
   watch.record(C, "thickness");
 
   // Check 8: topology.
   CheckEntry topo;
   topo.id = 8;
   topo.name = "topology";
-  TopologyReport T = analyse_topology(K, m);
+  TopologyReport T = analyse_topology(K, m, &lattice);
   if (!T.pure) topo.refute("not pure"), topo.add_witness({{"kind", "not_pure"}, {"simplex", T.impure_example}});
   if (T.boundary_ridges || T.singular_ridges) {
     topo.refute("not a closed pseudomanifold");
@@ -489,7 +491,7 @@ Certificate run_certify(const CertifyOptions& o) {
       if (reports[p].state != StarReport::State::proven) return;
       std::vector<Simplex> st;
       for (const auto& c : reports[p].star) st.push_back(c.simplex);
-      sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w]);
+      sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
     });
     long ok = 0, bad = 0, fallbacks = 0, skipped = 0;
     std::map<std::string, long> reasons;

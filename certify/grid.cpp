@@ -20,7 +20,6 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
   std::vector<int> by_extent(N);
   std::iota(by_extent.begin(), by_extent.end(), 0);
   std::stable_sort(by_extent.begin(), by_extent.end(), [&](int a, int b) { return hi[a] - lo[a] > hi[b] - lo[b]; });
-  axes_.assign(by_extent.begin(), by_extent.begin() + std::min(N, 3));
   double extent = 0, diag2 = 0, magnitude = 0;
   for (int k = 0; k < N; ++k) {
     extent = std::max(extent, hi[k] - lo[k]);
@@ -34,13 +33,24 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
   spacing_ = extent * std::pow(1.0 / std::max<double>(1, double(n)), 1.0 / dim);
   h_ = cell_hint > 0 ? cell_hint : 3 * spacing_;
   h_ = std::max(h_, std::ldexp(std::max(extent, magnitude), -30));
-  for (int a : axes_) {
-    origin_.push_back(lo[a]);
-    dims_.push_back(static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1);
+  // Up to kMaxAxes axes (a fourth axis cuts the candidates of a 3-manifold in R^4 several fold),
+  // but only three when four would not fit a dense table.
+  auto dense_ok = [&](double total) { return total <= std::max(64.0 * double(n), double(1 << 20)) && total <= double(1 << 24); };
+  for (int A = std::min(N, kMaxAxes); A >= 1; --A) {
+    axes_.assign(by_extent.begin(), by_extent.begin() + A);
+    origin_.clear();
+    dims_.clear();
+    double total = 1;
+    for (int a : axes_) {
+      origin_.push_back(lo[a]);
+      dims_.push_back(static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1);
+      total *= double(dims_.back());
+    }
+    if (A <= 3 || dense_ok(total)) break;
   }
   std::vector<std::int64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
-    std::int64_t idx[3] = {0, 0, 0};
+    std::int64_t idx[kMaxAxes] = {0, 0, 0, 0};
     for (std::size_t t = 0; t < axes_.size(); ++t)
       idx[t] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((points.point(i)[axes_[t]] - origin_[t]) / h_)), 0,
                                         dims_[t] - 1);
@@ -57,7 +67,7 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
   }
   double total = 1;
   for (auto d : dims_) total *= double(d);
-  if (total <= std::max(64.0 * double(n), double(1 << 20)) && total <= double(1 << 24)) {
+  if (dense_ok(total)) {
     dense_.assign(static_cast<std::size_t>(total) + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++dense_[keys[i] + 1];
     for (std::size_t c = 1; c < dense_.size(); ++c) dense_[c] += dense_[c - 1];
@@ -79,9 +89,10 @@ std::vector<int> PointGrid::candidates(std::span<const double> c, double r) cons
 std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
   std::vector<int> out;
   out.reserve(64);
-  std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  const int A = static_cast<int>(axes_.size());
+  std::int64_t lo[kMaxAxes] = {0, 0, 0, 0}, hi[kMaxAxes] = {0, 0, 0, 0};
   double cells = 1;
-  for (std::size_t t = 0; t < axes_.size(); ++t) {
+  for (int t = 0; t < A; ++t) {
     // The 2^-10 cell widening absorbs the rounding of the index computation (see header).
     double a = std::floor((c[axes_[t]] - r - origin_[t]) / h_ - 0x1p-10),
            b = std::floor((c[axes_[t]] + r - origin_[t]) / h_ + 0x1p-10);
@@ -90,34 +101,38 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
     if (b < 0 || a > double(dims_[t] - 1)) return out;  // the box misses the grid
     cells *= double(hi[t] - lo[t] + 1);
   }
+  if (A == 0) return order_;  // no axis (dimension 0): every point
   if (cells >= double(cells_.size()) && dense_.empty()) {  // cheaper to scan every occupied cell
     for (const auto& [k, range] : cells_) {
-      std::int64_t rest = k, idx[3] = {0, 0, 0};
-      for (int t = static_cast<int>(axes_.size()) - 1; t >= 0; --t) idx[t] = rest % dims_[t], rest /= dims_[t];
+      std::int64_t rest = k, idx[kMaxAxes] = {0, 0, 0, 0};
+      for (int t = A - 1; t >= 0; --t) idx[t] = rest % dims_[t], rest /= dims_[t];
       bool inside = true;
-      for (std::size_t t = 0; t < axes_.size(); ++t) inside = inside && idx[t] >= lo[t] && idx[t] <= hi[t];
+      for (int t = 0; t < A; ++t) inside = inside && idx[t] >= lo[t] && idx[t] <= hi[t];
       if (inside) out.insert(out.end(), order_.begin() + range.first, order_.begin() + range.second);
     }
-  } else if (!dense_.empty()) {
-    // Keys along the last axis are consecutive: one run of order_ per line of cells.
-    const int A = static_cast<int>(axes_.size());
-    const std::int64_t i0lo = A >= 2 ? lo[0] : 0, i0hi = A >= 2 ? hi[0] : 0;
-    const std::int64_t i1lo = A >= 3 ? lo[1] : 0, i1hi = A >= 3 ? hi[1] : 0;
-    for (std::int64_t i0 = i0lo; i0 <= i0hi; ++i0)
-      for (std::int64_t i1 = i1lo; i1 <= i1hi; ++i1) {
-        std::int64_t a[3] = {i0, i1, 0}, b[3] = {i0, i1, 0};
-        a[A - 1] = lo[A - 1], b[A - 1] = hi[A - 1];
-        if (A == 2) a[0] = b[0] = i0;
-        out.insert(out.end(), order_.begin() + dense_[key(a)], order_.begin() + dense_[key(b) + 1]);
+    return out;
+  }
+  // Every cell of the index box, the last axis innermost (odometer over the other axes).
+  std::int64_t idx[kMaxAxes];
+  for (int t = 0; t < A; ++t) idx[t] = lo[t];
+  for (;;) {
+    if (!dense_.empty()) {
+      // Keys along the last axis are consecutive: one run of order_ per line of cells.
+      std::int64_t a[kMaxAxes], b[kMaxAxes];
+      std::copy(idx, idx + A, a);
+      std::copy(idx, idx + A, b);
+      a[A - 1] = lo[A - 1], b[A - 1] = hi[A - 1];
+      out.insert(out.end(), order_.begin() + dense_[key(a)], order_.begin() + dense_[key(b) + 1]);
+    } else {
+      for (idx[A - 1] = lo[A - 1]; idx[A - 1] <= hi[A - 1]; ++idx[A - 1]) {
+        auto it = cells_.find(key(idx));
+        if (it != cells_.end()) out.insert(out.end(), order_.begin() + it->second.first, order_.begin() + it->second.second);
       }
-  } else {
-    std::int64_t idx[3];
-    for (idx[0] = lo[0]; idx[0] <= hi[0]; ++idx[0])
-      for (idx[1] = lo[1]; idx[1] <= hi[1]; ++idx[1])
-        for (idx[2] = lo[2]; idx[2] <= hi[2]; ++idx[2]) {
-          auto it = cells_.find(key(idx));
-          if (it != cells_.end()) out.insert(out.end(), order_.begin() + it->second.first, order_.begin() + it->second.second);
-        }
+    }
+    int t = A - 2;
+    while (t >= 0 && idx[t] == hi[t]) idx[t] = lo[t], --t;
+    if (t < 0) break;
+    ++idx[t];
   }
   return out;
 }

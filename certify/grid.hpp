@@ -1,4 +1,4 @@
-// A uniform grid over (up to) three coordinate axes of the ambient space: the certifier's own
+// A uniform grid over (up to) four coordinate axes of the ambient space: the certifier's own
 // spatial search, deliberately simpler than the producer's kd-tree.
 //
 // Sufficiency (what the certifier relies on): candidates(c, r) returns every point q with
@@ -22,6 +22,8 @@ namespace delcert::certify {
 
 class PointGrid {
  public:
+  static constexpr int kMaxAxes = 4;
+
   // `cell_hint`: intended cell size (e.g. a typical spacing); <= 0 picks one from the point count
   // and the intrinsic dimension m.
   PointGrid(const io::PointSet& points, int intrinsic_dimension, double cell_hint = 0);
@@ -42,7 +44,7 @@ class PointGrid {
   std::int64_t key(const std::int64_t* idx) const;
   std::vector<int> gather(std::span<const double> c, double r) const;  // candidates, unsorted
   const io::PointSet& points_;
-  std::vector<int> axes_;          // up to 3 coordinate indices
+  std::vector<int> axes_;          // up to kMaxAxes coordinate indices
   std::vector<double> origin_;     // per axis
   std::vector<std::int64_t> dims_; // cells per axis
   double h_ = 1, diameter_ = 0, spacing_ = 1;

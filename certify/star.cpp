@@ -29,13 +29,21 @@ exact::Interval from(const IA& x) { return {x.inf(), x.sup()}; }
 const exact::Interval kUnknown{-INFINITY, INFINITY};
 
 // Determinant of a small n x n matrix (row-major, n <= 7) by Laplace expansion over column
-// subsets, memoised: ring operations only.
-template <class T>
-T det(const T* a, int n) {
-  std::array<T, 128> table;
+// subsets, memoised: ring operations only. The size is a template parameter so that the mask
+// loops unroll and the table has 2^n entries; det() dispatches on n. (The operations and their
+// order are the same for every n, so interval results are reproducible bit for bit.)
+template <int n, class T>
+T det_fixed(const T* a) {
+  // popcount of masks below 128 (no library call without -mpopcnt)
+  static constexpr std::array<unsigned char, 128> kBits = [] {
+    std::array<unsigned char, 128> b{};
+    for (unsigned i = 1; i < 128; ++i) b[i] = static_cast<unsigned char>(b[i >> 1] + (i & 1));
+    return b;
+  }();
+  std::array<T, (1u << n)> table;
   table[0] = T(1);
   for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    int r = __builtin_popcount(mask);
+    int r = kBits[mask];
     const T* row = a + (n - r) * n;
     T acc(0);
     int pos = 0;
@@ -50,12 +58,29 @@ T det(const T* a, int n) {
   return table[(1u << n) - 1];
 }
 
+template <class T>
+T det(const T* a, int n) {
+  switch (n) {
+    case 0: return T(1);
+    case 1: return det_fixed<1>(a);
+    case 2: return det_fixed<2>(a);
+    case 3: return det_fixed<3>(a);
+    case 4: return det_fixed<4>(a);
+    case 5: return det_fixed<5>(a);
+    case 6: return det_fixed<6>(a);
+    case 7: return det_fixed<7>(a);
+    default: throw std::invalid_argument("det: matrix size above 7");
+  }
+}
+
 // The points tested at p: every point within distance `radius` of p (and possibly more).
 struct Local {
   int m = 0, N = 0;
   std::vector<int> global;  // local -> global, global[0] = p; the rest increasing
   const io::PointSet* points = nullptr;
-  const exact::TangentSpace* space = nullptr;
+  const exact::TangentSpace* space = nullptr;          // null: built on first use from `system`
+  const exact::ImplicitSystem* system = nullptr;
+  mutable std::optional<exact::TangentSpace> own_space_;
   mutable std::optional<exact::TangentChart> chart_;  // built on first use
   std::vector<IA> rows;       // (m + 1) per local: b = U^T (x - p), s = |x - p|^2 (enclosures)
   std::vector<double> drows;  // midpoints, for the floating-point gift-wrapping
@@ -70,7 +95,8 @@ struct Local {
     if (!chart_) {
       std::vector<const double*> ptrs;
       for (std::size_t i = 1; i < global.size(); ++i) ptrs.push_back(points->point(global[i]).data());
-      chart_.emplace(*space, std::span<const double* const>(ptrs));
+      if (!space && !own_space_) own_space_.emplace(*system, points->point(global[0]));
+      chart_.emplace(space ? *space : *own_space_, std::span<const double* const>(ptrs));
     }
     return *chart_;
   }
@@ -81,30 +107,41 @@ struct Local {
   }
 };
 
-Local make_local(const StarSettings& S, const exact::TangentSpace& T, const std::vector<IA>& U, int p, double radius) {
+// Enclosure of the Gram matrix G = U^T U of the exact basis (m x m).
+std::vector<IA> gram_enclosure(const exact::TangentSpace& T, int m) {
+  std::vector<IA> g(m * m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) g[a * m + b] = ia(exact::enclose(T.gram(a, b)));
+  return g;
+}
+
+// T may be null (the exact tangent space is then built only if the chart is needed).
+// tangent_only: only the enclosures of b(x) (check 7); s(x) is left 0 and drows empty.
+Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
+                 int p, double radius, bool tangent_only = false) {
   const io::PointSet& P = *S.points;
   std::vector<int> cand = S.grid->ball(P.point(p), radius);
   std::vector<int> glob{p};
   for (int g : cand)
     if (g != p) glob.push_back(g);
-  Local L{S.m, P.dimension, std::move(glob), &P, &T, std::nullopt, {}, {}, {}, radius, false};
+  Local L{S.m, P.dimension, std::move(glob), &P, T, S.system, std::nullopt, std::nullopt, {}, {}, {}, radius, false};
   L.all = L.global.size() == P.size();
   const int m = S.m, N = P.dimension;
   L.rows.assign(L.global.size() * (m + 1), IA(0));
-  L.drows.assign(L.global.size() * (m + 1), 0);
+  if (!tangent_only) L.drows.assign(L.global.size() * (m + 1), 0);
+  const auto pp = P.point(p);
   for (std::size_t l = 1; l < L.global.size(); ++l) {
-    auto x = P.point(L.global[l]), pp = P.point(p);
+    auto x = P.point(L.global[l]);
     IA* r = L.rows.data() + l * (m + 1);
     for (int i = 0; i < N; ++i) {
       IA d = IA(x[i]) - IA(pp[i]);
       for (int a = 0; a < m; ++a) r[a] += U[i * m + a] * d;
-      r[m] += CGAL::square(d);
+      if (!tangent_only) r[m] += CGAL::square(d);
     }
-    for (int a = 0; a <= m; ++a) L.drows[l * (m + 1) + a] = 0.5 * (r[a].inf() + r[a].sup());
+    if (!tangent_only)
+      for (int a = 0; a <= m; ++a) L.drows[l * (m + 1) + a] = 0.5 * (r[a].inf() + r[a].sup());
   }
-  L.gram.resize(m * m);
-  for (int a = 0; a < m; ++a)
-    for (int b = 0; b < m; ++b) L.gram[a * m + b] = ia(exact::enclose(T.gram(a, b)));
+  L.gram = gram;
   return L;
 }
 
@@ -539,6 +576,9 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
     for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  const std::vector<IA> G = gram_enclosure(T, m);
+  for (const IA& x : U) out.basis_enclosure.push_back(from(x));  // for check 7 (no second exact basis)
+  for (const IA& x : G) out.gram_enclosure.push_back(from(x));
   auto dist = [&](int g) {
     double s = 0;
     for (int k = 0; k < N; ++k) s += (P.point(g)[k] - P.point(p)[k]) * (P.point(g)[k] - P.point(p)[k]);
@@ -552,7 +592,7 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
       for (int v : s) r = std::max(r, 1.6 * dist(v));  // vertices are within 2R of p; 2.25R is needed
   }
   for (int iter = 0; iter < 64; ++iter) {
-    Local L = make_local(S, T, U, p, r);
+    Local L = make_local(S, &T, U, G, p, r);
     out.search_radius = r;
     out.searched_all = L.all;
     auto grow = [&](double need) {
@@ -640,6 +680,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
     for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  const std::vector<IA> G = gram_enclosure(T, m);
   double r = 3 * S.grid->spacing();
   for (int v : s) {
     double d2 = 0;
@@ -647,7 +688,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
     r = std::max(r, 2.5 * std::sqrt(d2));
   }
   for (;;) {
-    Local L = make_local(S, T, U, p, r);
+    Local L = make_local(S, &T, U, G, p, r);
     List c{};
     for (int i = 0, k = 1; i <= m; ++i)
       if (s[i] != p) c[k++] = L.local_of(s[i]);
@@ -755,6 +796,7 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
   if (!(f = fail_or(thick_fail, "thickness < upsilon0")).empty()) return f;
   // delta-protection: |c' - q'| > r + delta  <=>  e = |c' - q'|^2 - r^2 - delta^2 > 0 and e^2 > 4 delta^2 r^2.
   int prot_fail = 0;
+  const T delta2 = delta * delta, four_delta2_r2 = T(4) * delta * delta * r2;  // the same operations as per point
   IA reach2(INFINITY);  // points projected beyond 2r + delta from p are certainly protected
   if constexpr (std::is_same_v<T, IA>) reach2 = CGAL::square(IA(2) * CGAL::sqrt(r2) + delta);
   for (int k = 1; k < L.size(); ++k) {
@@ -763,10 +805,10 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
     if constexpr (std::is_same_v<T, IA>)  // |c' - q'| >= |q'| - r > r + delta; by_t is increasing
       if (t[q].inf() > reach2.sup()) break;
     if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
-    T e = t[q] - delta * delta;
+    T e = t[q] - delta2;
     for (int a = 0; a < m; ++a) e -= b[q * m + a] * y[a];
     int g1 = greater(e, T(0));
-    int g2 = g1 == 1 ? greater(e * e, T(4) * delta * delta * r2) : g1;
+    int g2 = g1 == 1 ? greater(e * e, four_delta2_r2) : g1;
     if (g1 == 0 || g2 == 0) return "not delta-protected (point " + std::to_string(L.global[q]) + ")";
     if (g1 < 0 || g2 < 0) prot_fail = -1;
   }
@@ -802,16 +844,26 @@ void SecureParams::prepare() {
 }
 
 SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simplex>& star, const SecureParams& sp,
-                            exact::FilterContext&) {
+                            exact::FilterContext&, const StarReport* report) {
   const io::PointSet& P = *S.points;
   const int m = S.m, N = P.dimension;
   SecureReport out;
   if (star.empty()) return out;
   exact::UpwardRounding upward;
-  exact::TangentSpace T(*S.system, P.point(p));
-  std::vector<IA> U(N * m);
-  for (int i = 0; i < N; ++i)
-    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+  // The enclosures of the exact basis and Gram matrix from the star analysis of p when given
+  // (the same values: enclose() of the same rationals); the exact tangent space itself is then
+  // built only for an exact fallback (Local::chart()).
+  std::optional<exact::TangentSpace> T;
+  std::vector<IA> U(N * m), Gram(m * m);
+  if (report && report->basis_enclosure.size() == U.size() && report->gram_enclosure.size() == Gram.size()) {
+    for (std::size_t i = 0; i < U.size(); ++i) U[i] = ia(report->basis_enclosure[i]);
+    for (std::size_t i = 0; i < Gram.size(); ++i) Gram[i] = ia(report->gram_enclosure[i]);
+  } else {
+    T.emplace(*S.system, P.point(p));
+    for (int i = 0; i < N; ++i)
+      for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T->basis(i, a)));
+    Gram = gram_enclosure(*T, m);
+  }
   // The points of W = B(p, 5 eps): a superset from the grid (testing more points is stricter),
   // grown if needed to contain the cells' vertices.
   double r = 5 * exact::enclose(sp.eps).hi;
@@ -821,14 +873,12 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
       for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
       r = std::max(r, std::sqrt(d2) * 1.0625);
     }
-  Local L = make_local(S, T, U, p, r);
+  Local L = make_local(S, T ? &*T : nullptr, U, Gram, p, r, /*tangent_only=*/true);
   if (L.size() > kMaxSecureNeighbourhood) {  // an informational check: bounded work per point
     out.undecided = static_cast<long>(star.size());
     return out;
   }
-  std::vector<mpq_class> Gq(m * m), Giq;  // exact G = U^T U; its exact inverse only when needed
-  for (int a = 0; a < m; ++a)
-    for (int k = 0; k < m; ++k) Gq[a * m + k] = T.gram(a, k);
+  std::vector<mpq_class> Gq, Giq;  // exact G = U^T U and its inverse, only when needed
   std::vector<IA> G(L.gram), Gi(m * m);
   {  // enclosure of G^-1 by the adjugate: (G^-1)_ak = (-1)^(a+k) det(G without row k, column a) / det G
     IA d = det(G.data(), m);
@@ -874,6 +924,10 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
     if (undecided) {  // decide exactly
       ++out.exact_fallbacks;
       if (bq.empty()) {
+        const exact::TangentSpace& Tq = L.chart().space();
+        Gq.assign(m * m, mpq_class(0));
+        for (int a = 0; a < m; ++a)
+          for (int k = 0; k < m; ++k) Gq[a * m + k] = Tq.gram(a, k);
         Giq = inverse(Gq, m);
         bq.assign(L.size() * m, mpq_class(0));
         tq.assign(L.size(), mpq_class(0));

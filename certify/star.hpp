@@ -79,6 +79,8 @@ struct StarReport {
   std::vector<CellReport> claimed;  // each claimed m-simplex at p, tested at p
   std::string link_problem;         // why the claimed star is not a closed star, if so
   double search_radius = 0;         // every point within this distance of p was tested
+  // Enclosures of the exact tangent basis U (N x m) and of G = U^T U (m x m) at p, for check 7.
+  std::vector<exact::Interval> basis_enclosure, gram_enclosure;
   bool searched_all = false;        // every sample point was tested
 };
 
@@ -105,7 +107,8 @@ struct SecureReport {
   long exact_fallbacks = 0;  // cells decided in exact rationals after the interval filter
   std::vector<std::pair<Simplex, std::string>> failures;  // (simplex, first failed condition), capped
 };
+// `report`: the star analysis of p, if available (its enclosures of the tangent basis are reused).
 SecureReport analyse_secure(const StarSettings& settings, int p, const std::vector<Simplex>& star,
-                            const SecureParams& params, exact::FilterContext& ctx);
+                            const SecureParams& params, exact::FilterContext& ctx, const StarReport* report = nullptr);
 
 }  // namespace delcert::certify

@@ -1,6 +1,7 @@
 #include "certify/thickness.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "certify/parallel.hpp"
@@ -16,9 +17,15 @@ using nlohmann::json;
 namespace {
 
 // Floating-point Upsilon^2 of a j-simplex (a guess that only selects which face to certify).
+// Fixed-size scratch (no allocation per face); j <= kMaxJ, larger j take the same code on vectors.
+constexpr int kMaxJ = 7;
+
 double approx_thickness2(const io::PointSet& P, const int* v, int j) {
   const int N = P.dimension, V = j + 1;
-  std::vector<double> d(V * V, 0);
+  // Larger faces are refused by exact::thickness_sign / thickness_squared_exact anyway.
+  if (j > kMaxJ) return 0.0;
+  std::array<double, (kMaxJ + 1) * (kMaxJ + 1)> d;
+  std::fill(d.begin(), d.begin() + V * V, 0.0);
   double longest = 0;
   for (int a = 0; a < V; ++a)
     for (int b = a + 1; b < V; ++b) {
@@ -27,9 +34,9 @@ double approx_thickness2(const io::PointSet& P, const int* v, int j) {
       d[a * V + b] = d[b * V + a] = s;
       longest = std::max(longest, s);
     }
-  auto gram = [&](const std::vector<int>& idx) {
-    const int n = static_cast<int>(idx.size()) - 1;
-    std::vector<double> g(n * n);
+  auto gram = [&](const int* idx, int count) {
+    const int n = count - 1;
+    std::array<double, kMaxJ * kMaxJ> g;
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b) g[a * n + b] = 0.5 * (d[idx[0] * V + idx[a + 1]] + d[idx[0] * V + idx[b + 1]] - d[idx[a + 1] * V + idx[b + 1]]);
     // Gaussian elimination with partial pivoting.
@@ -51,14 +58,15 @@ double approx_thickness2(const io::PointSet& P, const int* v, int j) {
     }
     return det;
   };
-  std::vector<int> all(V);
+  std::array<int, kMaxJ + 1> all{};
   for (int i = 0; i < V; ++i) all[i] = i;
-  double gt = gram(all), best = INFINITY;
+  double gt = gram(all.data(), V), best = INFINITY;
   for (int l = 0; l < V; ++l) {
-    std::vector<int> f;
+    std::array<int, kMaxJ + 1> f{};
+    int nf = 0;
     for (int i = 0; i < V; ++i)
-      if (i != l) f.push_back(i);
-    double gf = gram(f);
+      if (i != l) f[nf++] = i;
+    double gf = gram(f.data(), nf);
     best = std::min(best, gf > 0 ? gt / gf : 0.0);
   }
   return longest > 0 ? std::max(0.0, best) / (double(j) * j * longest) : 0.0;
@@ -74,12 +82,16 @@ std::vector<const double*> vertex_pointers(const io::PointSet& P, const int* v, 
 
 ThicknessResult check_thickness(const io::PointSet& P, const io::Complex& K, int m, const mpq_class* gamma0, int threads,
                                 exact::FilterStats& stats) {
+  return check_thickness(P, face_lattice(K.simplices), m, gamma0, threads, stats);
+}
+
+ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int m, const mpq_class* gamma0, int threads,
+                                exact::FilterStats& stats) {
   ThicknessResult R;
   CheckEntry& e = R.entry;
   e.id = 5;
   e.name = "thickness";
   const int N = P.dimension;
-  FaceLattice L = face_lattice(K.simplices);
   std::vector<exact::FilterContext> ctx(std::max(1, threads));
   json minima = json::object();
   std::vector<std::vector<char>> thin(std::max(0, L.dimension + 1));  // per face: Upsilon < Gamma0^j

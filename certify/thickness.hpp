@@ -13,6 +13,8 @@
 
 namespace delcert::certify {
 
+struct FaceLattice;
+
 struct ThicknessResult {
   CheckEntry entry;
   // Certified enclosure of min Upsilon over the m-simplices (for the theorem report); lo = -1
@@ -21,6 +23,9 @@ struct ThicknessResult {
 };
 
 ThicknessResult check_thickness(const io::PointSet& points, const io::Complex& complex, int m, const mpq_class* gamma0,
+                                int threads, exact::FilterStats& stats);
+// The same with the complex's face lattice already built (face_lattice(complex.simplices)).
+ThicknessResult check_thickness(const io::PointSet& points, const FaceLattice& lattice, int m, const mpq_class* gamma0,
                                 int threads, exact::FilterStats& stats);
 
 }  // namespace delcert::certify

@@ -77,6 +77,10 @@ long FaceLattice::find(int k, const int* face) const {
   if (k < 0 || k > dimension) return -1;
   const auto& f = flat[k];
   std::size_t s = k + 1, lo = 0, hi = f.size() / s;
+  if (static_cast<std::size_t>(k) < first.size() && !first[k].empty()) {  // faces starting with face[0] only
+    if (face[0] < 0 || static_cast<std::size_t>(face[0]) + 1 >= first[k].size()) return -1;
+    lo = static_cast<std::size_t>(first[k][face[0]]), hi = static_cast<std::size_t>(first[k][face[0] + 1]);
+  }
   while (lo < hi) {
     std::size_t mid = (lo + hi) / 2;
     if (std::lexicographical_compare(f.begin() + static_cast<long>(mid * s), f.begin() + static_cast<long>(mid * s + s), face, face + s))
@@ -103,10 +107,46 @@ FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal) {
     }
   }
   for (int k = 0; k <= L.dimension; ++k) L.flat[k] = sorted_unique_records(L.flat[k], k + 1);
+  L.first.assign(std::max(0, L.dimension + 1), {});
+  for (int k = 0; k <= L.dimension; ++k) {
+    const std::size_t n = L.count(k);
+    if (n == 0 || L.flat[k][0] < 0) continue;  // (negative vertex ids: keep the plain search)
+    const int vmax = L.flat[k][(n - 1) * (k + 1)];  // faces are sorted: the last has the largest first vertex
+    auto& F = L.first[k];
+    F.assign(static_cast<std::size_t>(vmax) + 2, 0);
+    for (std::size_t j = 0; j < n; ++j) ++F[L.flat[k][j * (k + 1)] + 1];
+    for (std::size_t v = 1; v < F.size(); ++v) F[v] += F[v - 1];
+  }
   return L;
 }
 
 namespace {
+
+// For k = 2..D: the index of each k-face's boundary (k-1)-faces, of[k][j * (k + 1) + i] = the
+// face without its vertex i. Built once and shared by the reductions over Z/2 and Z/3.
+struct FaceIndex {
+  std::vector<std::vector<long>> of;
+};
+
+FaceIndex face_index(const FaceLattice& L) {
+  FaceIndex I;
+  const int D = L.dimension;
+  I.of.resize(std::max(D + 1, 0));
+  for (int k = 2; k <= D; ++k) {
+    const long n = static_cast<long>(L.count(k));
+    I.of[k].resize(static_cast<std::size_t>(n) * (k + 1));
+    std::vector<int> face(k);
+    for (long j = 0; j < n; ++j) {
+      const int* s = &L.flat[k][j * (k + 1)];
+      for (int i = 0; i <= k; ++i) {
+        for (int t = 0, u = 0; t <= k; ++t)
+          if (t != i) face[u++] = s[t];
+        I.of[k][j * (k + 1) + i] = L.find(k - 1, face.data());
+      }
+    }
+  }
+  return I;
+}
 
 // rank of d_D for a closed D-pseudomanifold (every ridge in exactly two facets), by a spanning
 // forest of the dual graph: over Z/2, and over Z/p when every component is orientable, the
@@ -116,20 +156,15 @@ namespace {
 // and span im d_D (a component's oriented sum is a cycle), so rank d_D = #facets - #components. The ridges of the
 // forest then index coordinates on which im d_D projects isomorphically, so d_(D-1) has the same
 // rank on the other ridges alone ("clearing"). Returns false when the shortcut does not apply.
-bool top_rank_by_forest(const FaceLattice& L, int p, long& rank, std::vector<char>& tree_ridge) {
+bool top_rank_by_forest(const FaceLattice& L, const FaceIndex& I, int p, long& rank, std::vector<char>& tree_ridge) {
   const int D = L.dimension;
   const long F = static_cast<long>(L.count(D)), R = static_cast<long>(L.count(D - 1));
   std::vector<std::array<long, 2>> cof(R, {-1, -1});   // the two facets of each ridge
   std::vector<std::array<int, 2>> pos(R, {0, 0});       // the ridge's position in each facet
-  std::vector<long> ridge_of(F * (D + 1));
-  std::vector<int> face(D);
+  const std::vector<long>& ridge_of = I.of[D];
   for (long j = 0; j < F; ++j) {
-    const int* s = &L.flat[D][j * (D + 1)];
     for (int i = 0; i <= D; ++i) {
-      for (int t = 0, u = 0; t <= D; ++t)
-        if (t != i) face[u++] = s[t];
-      long r = L.find(D - 1, face.data());
-      ridge_of[j * (D + 1) + i] = r;
+      long r = ridge_of[j * (D + 1) + i];
       int slot = cof[r][0] < 0 ? 0 : cof[r][1] < 0 ? 1 : 2;
       if (slot == 2) return false;
       cof[r][slot] = j, pos[r][slot] = i;
@@ -169,17 +204,32 @@ bool top_rank_by_forest(const FaceLattice& L, int p, long& rank, std::vector<cha
 
 }  // namespace
 
-std::vector<long> boundary_ranks(const FaceLattice& L, int p) {
+static std::vector<long> boundary_ranks(const FaceLattice& L, const FaceIndex& I, int p) {
   const int D = L.dimension;
   std::vector<long> rank(std::max(D + 2, 1), 0);
   std::vector<char> cleared_above;  // k-faces already known to reduce to zero (pivots of d_{k+1})
   int top = D;
   long forest_rank = 0;
   std::vector<char> forest;
-  if (D >= 2 && top_rank_by_forest(L, p, forest_rank, forest)) {
+  if (D >= 2 && top_rank_by_forest(L, I, p, forest_rank, forest)) {
     rank[D] = forest_rank;
     cleared_above.swap(forest);
     top = D - 1;
+  }
+  // rank d_1 = #vertices - #components, over any field, by a spanning forest of the 1-skeleton.
+  // Its edges can be dropped from the rows of d_2: im d_2 lies in ker d_1, and a 1-cycle that
+  // vanishes off the forest is 0 (a forest has no cycle), so projecting away the forest's
+  // coordinates is injective on im d_2 and keeps its rank (over any field). Fewer rows, less fill.
+  std::vector<char> forest_edge;
+  if (D >= 1) {
+    UnionFind uf(L.count(0));
+    const std::size_t E = L.count(1);
+    forest_edge.assign(E, 0);
+    for (std::size_t e = 0; e < E; ++e) {
+      long a = L.find(0, &L.flat[1][2 * e]), b = L.find(0, &L.flat[1][2 * e + 1]);
+      forest_edge[e] = uf.unite(a, b);
+      rank[1] += forest_edge[e];
+    }
   }
   using Column = std::vector<std::pair<long, int>>;  // (row, coefficient mod p), rows increasing
   for (int k = top; k >= 2; --k) {
@@ -187,15 +237,13 @@ std::vector<long> boundary_ranks(const FaceLattice& L, int p) {
     std::vector<long> pivot_col(rows, -1);
     std::vector<Column> reduced(cols);
     std::vector<char> cleared_here(rows, 0);
-    std::vector<int> face(k);
     for (long j = 0; j < cols; ++j) {
       if (!cleared_above.empty() && cleared_above[j]) continue;
-      const int* s = &L.flat[k][j * (k + 1)];
       Column col;
       for (int i = 0; i <= k; ++i) {  // the face without vertex i, coefficient (-1)^i
-        for (int t = 0, u = 0; t <= k; ++t)
-          if (t != i) face[u++] = s[t];
-        col.emplace_back(L.find(k - 1, face.data()), (i % 2 == 0) ? 1 : p - 1);
+        const long row = I.of[k][j * (k + 1) + i];
+        if (k == 2 && forest_edge[row]) continue;
+        col.emplace_back(row, (i % 2 == 0) ? 1 : p - 1);
       }
       std::sort(col.begin(), col.end());
       while (!col.empty() && pivot_col[col.back().first] >= 0) {
@@ -227,24 +275,23 @@ std::vector<long> boundary_ranks(const FaceLattice& L, int p) {
     }
     cleared_above.swap(cleared_here);
   }
-  if (D >= 1) {  // rank d_1 = #vertices - #components, over any field
-    UnionFind uf(L.count(0));
-    const std::size_t E = L.count(1);
-    for (std::size_t e = 0; e < E; ++e) {
-      long a = L.find(0, &L.flat[1][2 * e]), b = L.find(0, &L.flat[1][2 * e + 1]);
-      rank[1] += uf.unite(a, b);
-    }
-  }
   return rank;
 }
 
-std::vector<long> betti_numbers(const FaceLattice& L, int p) {
-  auto rank = boundary_ranks(L, p);
+namespace {
+
+std::vector<long> betti_from_ranks(const FaceLattice& L, const std::vector<long>& rank) {
   std::vector<long> b;
   for (int k = 0; k <= L.dimension; ++k)
     b.push_back(static_cast<long>(L.count(k)) - rank[k] - (k + 1 <= L.dimension ? rank[k + 1] : 0));
   return b;
 }
+
+}  // namespace
+
+std::vector<long> boundary_ranks(const FaceLattice& L, int p) { return boundary_ranks(L, face_index(L), p); }
+
+std::vector<long> betti_numbers(const FaceLattice& L, int p) { return betti_from_ranks(L, boundary_ranks(L, p)); }
 
 Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string* why) {
   auto fail = [&](const std::string& w) {
@@ -367,7 +414,85 @@ Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string
   return Tri::unknown;
 }
 
-TopologyReport analyse_topology(const io::Complex& K, int m) {
+namespace {
+
+// A fast sufficient test that the triangles `tris` (global vertex ids) form a 2-sphere, by the
+// same conditions as is_sphere(.., 2, ..): every edge in exactly two triangles, connected, every
+// vertex link one cycle, Euler characteristic 2. True only when is_sphere would answer yes; on
+// false the caller asks is_sphere (which names the problem). No allocation after warm-up.
+struct LinkScratch {
+  std::vector<int> verts, edges, parent, start, ring;
+};
+
+bool link_is_2_sphere(const std::vector<std::array<int, 3>>& tris, LinkScratch& W) {
+  if (tris.empty()) return false;
+  W.verts.clear();
+  for (const auto& t : tris) W.verts.insert(W.verts.end(), t.begin(), t.end());
+  std::sort(W.verts.begin(), W.verts.end());
+  W.verts.erase(std::unique(W.verts.begin(), W.verts.end()), W.verts.end());
+  const int V = static_cast<int>(W.verts.size());
+  auto local = [&](int v) { return static_cast<int>(std::lower_bound(W.verts.begin(), W.verts.end(), v) - W.verts.begin()); };
+  W.edges.clear();  // edge (a < b) as a * V + b, once per triangle side
+  for (const auto& t : tris) {
+    int a = local(t[0]), b = local(t[1]), c = local(t[2]);
+    if (a == b || b == c || a == c) return false;
+    W.edges.push_back(std::min(a, b) * V + std::max(a, b));
+    W.edges.push_back(std::min(b, c) * V + std::max(b, c));
+    W.edges.push_back(std::min(a, c) * V + std::max(a, c));
+  }
+  std::sort(W.edges.begin(), W.edges.end());
+  for (std::size_t i = 0; i < W.edges.size(); i += 2)
+    if (i + 1 >= W.edges.size() || W.edges[i] != W.edges[i + 1] || (i + 2 < W.edges.size() && W.edges[i + 2] == W.edges[i]))
+      return false;
+  const long E = static_cast<long>(W.edges.size() / 2);
+  W.parent.resize(V);
+  for (int i = 0; i < V; ++i) W.parent[i] = i;
+  auto find = [&](int x) {
+    while (W.parent[x] != x) x = W.parent[x] = W.parent[W.parent[x]];
+    return x;
+  };
+  int comps = V;
+  for (std::size_t i = 0; i < W.edges.size(); i += 2) {
+    int a = find(W.edges[i] / V), b = find(W.edges[i] % V);
+    if (a != b) W.parent[std::max(a, b)] = std::min(a, b), --comps;
+  }
+  if (comps != 1) return false;
+  if (static_cast<long>(V) - E + static_cast<long>(tris.size()) != 2) return false;
+  // Vertex links: the opposite edges of the triangles at v, as pairs in ring[start[v]..].
+  W.start.assign(V + 1, 0);
+  for (const auto& t : tris)
+    for (int v : t) ++W.start[local(v) + 1];
+  for (int v = 0; v < V; ++v) W.start[v + 1] += W.start[v];
+  W.ring.assign(2 * static_cast<std::size_t>(W.start[V]), -1);
+  W.parent.assign(V, 0);  // reused: fill position per vertex
+  for (const auto& t : tris)
+    for (int i = 0; i < 3; ++i) {
+      int v = local(t[i]), k = W.start[v] + W.parent[v]++;
+      W.ring[2 * k] = local(t[(i + 1) % 3]), W.ring[2 * k + 1] = local(t[(i + 2) % 3]);
+    }
+  for (int v = 0; v < V; ++v) {  // one cycle through all W.start[v+1] - W.start[v] edges
+    const int b = W.start[v], n = W.start[v + 1] - b;
+    int first = W.ring[2 * b], cur = W.ring[2 * b + 1], prev_edge = 0, steps = 1;
+    while (cur != first && steps <= n) {
+      int next_edge = -1;
+      for (int k = 0; k < n; ++k)
+        if (k != prev_edge && (W.ring[2 * (b + k)] == cur || W.ring[2 * (b + k) + 1] == cur)) {
+          next_edge = k;
+          break;
+        }
+      if (next_edge < 0) return false;
+      cur = W.ring[2 * (b + next_edge)] == cur ? W.ring[2 * (b + next_edge) + 1] : W.ring[2 * (b + next_edge)];
+      prev_edge = next_edge;
+      ++steps;
+    }
+    if (cur != first || steps != n) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* lattice) {
   TopologyReport R;
   R.m = m;
   std::vector<std::vector<int>> tops;
@@ -412,10 +537,33 @@ TopologyReport analyse_topology(const io::Complex& K, int m) {
   std::vector<std::vector<long>> incident(K.num_vertices);
   for (std::size_t j = 0; j < K.simplices.size(); ++j)
     for (int v : K.simplices[j]) incident[v].push_back(static_cast<long>(j));
+  LinkScratch scratch;
+  std::vector<std::array<int, 3>> tris;
   for (std::size_t v = 0; v < K.num_vertices; ++v) {
     if (incident[v].empty()) {
       ++R.uncovered_vertices;
       continue;
+    }
+    if (m == 3) {  // fast path for surface links; anything it does not accept goes to is_sphere
+      tris.clear();
+      bool all_tets = true;
+      for (long j : incident[v]) {
+        const auto& s = K.simplices[j];
+        if (s.size() != 4) {
+          all_tets = false;
+          break;
+        }
+        std::array<int, 3> t{};
+        int n = 0;
+        for (int w : s)
+          if (w != static_cast<int>(v) && n < 3) t[n++] = w;
+        if (n != 3) {
+          all_tets = false;
+          break;
+        }
+        tris.push_back(t);
+      }
+      if (all_tets && link_is_2_sphere(tris, scratch)) continue;  // is_sphere would say yes
     }
     std::vector<std::vector<int>> link;
     for (long j : incident[v]) {
@@ -435,13 +583,16 @@ TopologyReport analyse_topology(const io::Complex& K, int m) {
     }
   }
   if (!too_big) {
-    FaceLattice L = face_lattice(K.simplices);
+    std::optional<FaceLattice> own;
+    if (!lattice) own = face_lattice(K.simplices);
+    const FaceLattice& L = lattice ? *lattice : *own;
     for (int k = 0; k <= L.dimension; ++k) {
       R.f.push_back(static_cast<long>(L.count(k)));
       R.euler += (k % 2 ? -1 : 1) * R.f.back();
     }
-    R.betti_z2 = betti_numbers(L, 2);
-    R.betti_z3 = betti_numbers(L, 3);
+    const FaceIndex I = face_index(L);  // shared by both fields
+    R.betti_z2 = betti_from_ranks(L, boundary_ranks(L, I, 2));
+    R.betti_z3 = betti_from_ranks(L, boundary_ranks(L, I, 3));
   }
   return R;
 }

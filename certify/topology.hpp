@@ -15,6 +15,9 @@ namespace delcert::certify {
 struct FaceLattice {
   int dimension = -1;                      // top dimension
   std::vector<std::vector<int>> flat;      // flat[k]: #k-faces by (k+1), row-major, lexicographic
+  // first[k][v]..first[k][v + 1]: the k-faces whose first vertex is v (v < max vertex + 1), to
+  // narrow find(); empty: search all of flat[k].
+  std::vector<std::vector<long>> first;
   std::size_t count(int k) const { return k <= dimension ? flat[k].size() / (k + 1) : 0; }
   // Index of a sorted k-face, or -1.
   long find(int k, const int* face) const;
@@ -55,6 +58,7 @@ struct TopologyReport {
   std::vector<long> betti_z2, betti_z3;
 };
 
-TopologyReport analyse_topology(const io::Complex& complex, int m);
+// `lattice`: face_lattice(complex.simplices) when the caller has it already (else built here).
+TopologyReport analyse_topology(const io::Complex& complex, int m, const FaceLattice* lattice = nullptr);
 
 }  // namespace delcert::certify

@@ -99,5 +99,40 @@ TEST(Topology, ReportOnComplexes) {
   EXPECT_EQ(analyse_topology(uncovered, 2).uncovered_vertices, 1);
 }
 
+// m = 3: vertex links are 2-spheres (analyse_topology's fast path must agree with is_sphere).
+TEST(Topology, VertexLinksOfThreeManifolds) {
+  Simplices boundary4;  // the boundary of the 4-simplex: a 3-sphere, every link a tetrahedron boundary
+  for (int skip = 0; skip < 5; ++skip) {
+    std::vector<int> t;
+    for (int v = 0; v < 5; ++v)
+      if (v != skip) t.push_back(v);
+    boundary4.push_back(t);
+  }
+  io::Complex K{5, boundary4};
+  TopologyReport R = analyse_topology(K, 3);
+  EXPECT_EQ(R.bad_links, 0);
+  EXPECT_EQ(R.unknown_links, 0);
+  EXPECT_EQ(R.euler, 0);
+  EXPECT_EQ(R.betti_z2, (std::vector<long>{1, 0, 0, 1}));
+  EXPECT_EQ(R.betti_z3, (std::vector<long>{1, 0, 0, 1}));
+  // Two 3-spheres sharing vertex 0: its link is two disjoint 2-spheres; every other link is fine.
+  Simplices wedge = boundary4;
+  for (auto t : boundary4) {
+    for (int& v : t)
+      if (v) v += 4;
+    wedge.push_back(t);
+  }
+  io::Complex W{9, wedge};
+  R = analyse_topology(W, 3);
+  EXPECT_EQ(R.bad_links, 1);
+  EXPECT_EQ(R.bad_link_example, 0);
+  std::string why;
+  Simplices link0;
+  for (const auto& t : wedge)
+    if (t[0] == 0) link0.push_back(std::vector<int>(t.begin() + 1, t.end()));
+  EXPECT_EQ(is_sphere(link0, 2, &why), Tri::no);
+  EXPECT_EQ(R.bad_link_reason, why);
+}
+
 }  // namespace
 }  // namespace delcert::certify
