@@ -6,6 +6,9 @@
 #include <functional>
 #include <string>
 
+#include "core/io/points.hpp"
+#include "core/manifold/manifold.hpp"
+
 namespace delcert::app {
 
 inline constexpr int kExitOk = 0;
@@ -19,6 +22,11 @@ struct Command {
 
 // Help text for --manifold, listing the built-in names.
 std::string manifold_option_help();
+
+// Rejects input points that are not on M to the spec's residual tolerance, or are on a component
+// the spec's selector excludes: their tangent flat would mean nothing. Throws io::InputError
+// naming `path`.
+void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path);
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);

@@ -1,5 +1,6 @@
 // delcert: the producer's command-line tool (DESIGN §5b). One file per subcommand.
 // Exit status: 0 success, 2 bad input or usage, 4 refinement did not converge.
+#include <cstdio>
 #include <iostream>
 #include <vector>
 
@@ -14,6 +15,24 @@ std::string manifold_option_help() {
   auto names = io::builtin_spec_names();
   for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
   return s + ")";
+}
+
+void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
+  const double tolerance = manifold.spec().residual_tolerance.get_d();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double r = manifold.residual(points.point(i));
+    if (!(r <= tolerance)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.3g exceeds the spec's residual_tolerance %.3g", r, tolerance);
+      throw io::InputError(path, 0,
+                           "point " + std::to_string(i) + " (0-based) is not on " + manifold.spec().name +
+                               ": max |F_i(p)| = " + buf + "; project the points onto M first");
+    }
+    if (!manifold.on_selected_component(points.point(i)))
+      throw io::InputError(path, 0,
+                           "point " + std::to_string(i) + " (0-based) is on the wrong component of " +
+                               manifold.spec().name + " (the spec's selector is not positive there)");
+  }
 }
 
 }  // namespace delcert::app

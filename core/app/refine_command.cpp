@@ -58,22 +58,6 @@ double rational_option(const std::string& name, const std::string& text, mpq_cla
   }
 }
 
-void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
-  const double tolerance = manifold.spec().residual_tolerance.get_d();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double r = manifold.residual(points.point(i));
-    if (!(r <= tolerance)) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%.3g exceeds the spec's residual_tolerance %.3g", r, tolerance);
-      throw io::InputError(path, 0, "point " + std::to_string(i) + " (0-based) is not on " + manifold.spec().name +
-                                        ": max |F_i(p)| = " + buf + "; project the points onto M first");
-    }
-    if (!manifold.on_selected_component(points.point(i)))
-      throw io::InputError(path, 0, "point " + std::to_string(i) + " (0-based) is on the wrong component of " +
-                                        manifold.spec().name + " (the spec's selector is not positive there)");
-  }
-}
-
 int run_refine(const RefineArgs& a) {
   Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();

@@ -49,26 +49,6 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-// Rejects points that are not on M (to the spec's residual tolerance) or not on the selected
-// component: their tangent flat would not mean anything.
-void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
-  const double tolerance = manifold.spec().residual_tolerance.get_d();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double r = manifold.residual(points.point(i));
-    if (!(r <= tolerance)) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%.3g exceeds the spec's residual_tolerance %.3g", r, tolerance);
-      throw io::InputError(path, 0,
-                           "point " + std::to_string(i) + " (0-based) is not on " + manifold.spec().name +
-                               ": max |F_i(p)| = " + buf + "; project the points onto M first");
-    }
-    if (!manifold.on_selected_component(points.point(i)))
-      throw io::InputError(path, 0,
-                           "point " + std::to_string(i) + " (0-based) is on the wrong component of " +
-                               manifold.spec().name + " (the spec's selector is not positive there)");
-  }
-}
-
 int run_tangential(const TangentialArgs& a) {
   Stopwatch clock;
   nlohmann::ordered_json times;

@@ -4,19 +4,11 @@
 #include <cmath>
 
 #include "core/refine/simplex_measures.hpp"
+#include "core/spatial/distance.hpp"
 
 namespace delcert::refine {
 
 namespace {
-
-double squared_distance(std::span<const double> a, std::span<const double> b) {
-  double s = 0;
-  for (std::size_t j = 0; j < a.size(); ++j) {
-    double e = a[j] - b[j];
-    s += e * e;
-  }
-  return s;
-}
 
 // L(σ)^2 from the vertex coordinates.
 double shortest_edge2(const io::PointSet& points, std::span<const int> cell) {

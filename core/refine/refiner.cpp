@@ -22,6 +22,7 @@
 #include "core/tangential/star.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "core/spatial/distance.hpp"
 #include "exact/polynomial.hpp"
 
 namespace delcert::refine {
@@ -106,15 +107,6 @@ bool canonical_less(const Configuration& a, const Configuration& b) {
   if (a.p != b.p) return a.p < b.p;
   if (a.cell != b.cell) return a.cell < b.cell;
   return a.q < b.q;
-}
-
-double squared_distance(std::span<const double> a, std::span<const double> b) {
-  double s = 0;
-  for (std::size_t j = 0; j < a.size(); ++j) {
-    double e = a[j] - b[j];
-    s += e * e;
-  }
-  return s;
 }
 
 class Refiner {
