@@ -3,5 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=${JOBS:-$(nproc)}
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDELCERT_WERROR="${DELCERT_WERROR:-OFF}" "$@" >/dev/null
+# DELCERT_WERROR=ON|OFF is passed on only when set, so that the demo and the tests share one build.
+werror=()
+if [ -n "${DELCERT_WERROR:-}" ]; then werror=(-DDELCERT_WERROR="$DELCERT_WERROR"); fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "$@" >/dev/null
 cmake --build build -j "$JOBS"
