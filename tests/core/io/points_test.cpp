@@ -9,6 +9,7 @@
 
 #include "core/io/input_error.hpp"
 #include "core/sampling/random.hpp"
+#include "tests/core/io/expect_input_error.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert::io {
@@ -84,16 +85,8 @@ class BadPoints : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadPoints, ReportsFileLineAndProblem) {
   const BadCase& c = GetParam();
-  std::string path = fixture(std::string("bad/") + c.file);
-  try {
-    read_points(path, PointReadOptions{c.expected_dimension, true});
-    FAIL() << "no error for " << c.file;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), path);
-    EXPECT_EQ(e.line(), c.line) << e.what();
-    EXPECT_NE(std::string(e.what()).find(c.message_part), std::string::npos) << e.what();
-    EXPECT_EQ(std::string(e.what()).rfind(path + ":" + std::to_string(c.line) + ": ", 0), 0u) << e.what();
-  }
+  test::expect_input_error([&](const std::string& path) { read_points(path, PointReadOptions{c.expected_dimension, true}); },
+                           fixture(std::string("bad/") + c.file), c.line, c.message_part);
 }
 
 INSTANTIATE_TEST_SUITE_P(
