@@ -15,18 +15,9 @@
 // With --reps R, delcert runs R times (the outputs are identical; the JSON gives the median
 // total time and every run's); GUDHI runs once (its time is set by the limit).
 //
-// GUDHI runs its parallel (TBB) mode, as in bench_tangential.cpp (bench/CMakeLists.txt links TBB).
-#ifndef GUDHI_USE_TBB
-#define GUDHI_USE_TBB
-#endif
+#include "bench/gudhi_input.hpp"
 
-// GCC 12 false positives inside Eigen/CGAL/GUDHI headers (as in bench_tangential.cpp).
-#pragma GCC diagnostic ignored "-Warray-bounds"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <CGAL/Epick_d.h>
-#include <gudhi/Tangential_complex.h>
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -82,26 +73,15 @@ std::vector<Case> parse_cases(const std::string& text) {
 template <int M>
 json run_gudhi_m(const io::PointSet& ps, const tangential::TangentPlanes& planes, int threads, double max_perturb,
                  double time_limit) {
-  using K = CGAL::Epick_d<CGAL::Dynamic_dimension_tag>;
-  using TC = Gudhi::tangential_complex::Tangential_complex<K, CGAL::Dimension_tag<M>, CGAL::Parallel_tag>;
-  const K k;
-  const int N = ps.dimension;
-  std::vector<K::Point_d> points;
-  typename TC::TS_container bases;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    auto p = ps.point(i);
-    points.push_back(k.construct_point_d_object()(N, p.begin(), p.end()));
-    std::vector<K::Vector_d> vectors;
-    auto b = planes.basis(i);
-    for (int j = 0; j < M; ++j) vectors.push_back(k.construct_vector_d_object()(N, b.begin() + j * N, b.begin() + (j + 1) * N));
-    bases.emplace_back(i, vectors);
-  }
+  using Input = bench::GudhiInput<M>;
+  using TC = typename Input::TC;
+  const Input in(ps, planes);
   json r;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   r["parallel"] = "TBB, " + std::to_string(threads) + " threads";
   auto t0 = std::chrono::steady_clock::now();
-  TC tc(points, M, k);
-  tc.set_tangent_planes(bases);
+  TC tc(in.points, M, in.kernel);
+  tc.set_tangent_planes(in.bases);
   tc.compute_tangential_complex();
   r["build_seconds"] = seconds_since(t0);
   auto before = tc.number_of_inconsistent_simplices();

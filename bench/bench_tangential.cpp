@@ -17,16 +17,8 @@
 // Usage: bench_tangential [--cases NAME:COUNT,...] [--all] [--threads T] [--reps R] [--seed S]
 // Default: sphere-2:10000,sphere-3:10000. --all: the five manifolds at 10000 and 50000 points.
 // Prints one JSON document on stdout (medians over the repetitions); progress on stderr.
-#ifndef GUDHI_USE_TBB
-#define GUDHI_USE_TBB
-#endif
-// GCC 12 false positives inside Eigen/CGAL headers (see core/tangential/regular_star_cgal.cpp).
-#pragma GCC diagnostic ignored "-Warray-bounds"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <gudhi/Tangential_complex.h>
-#include <tbb/global_control.h>
+#include "bench/gudhi_input.hpp"
 
-#include <CGAL/Epick_d.h>
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
 #include <time.h>
@@ -124,29 +116,15 @@ json run_delcert(const Input& in, int threads) {
 
 template <int M>
 json run_gudhi_m(const Input& in, int threads) {
-  using K = CGAL::Epick_d<CGAL::Dynamic_dimension_tag>;
-  using TC = Gudhi::tangential_complex::Tangential_complex<K, CGAL::Dimension_tag<M>, CGAL::Parallel_tag>;
-  const K k;
-  std::vector<K::Point_d> points;
-  points.reserve(in.points.size());
-  typename TC::TS_container bases;
-  bases.reserve(in.points.size());
-  for (std::size_t i = 0; i < in.points.size(); ++i) {
-    auto p = in.points.point(i);
-    points.push_back(k.construct_point_d_object()(in.N, p.begin(), p.end()));
-    std::vector<K::Vector_d> vectors;
-    auto b = in.planes.basis(i);
-    for (int j = 0; j < M; ++j)
-      vectors.push_back(k.construct_vector_d_object()(in.N, b.begin() + j * in.N, b.begin() + (j + 1) * in.N));
-    bases.emplace_back(i, vectors);
-  }
+  using TC = typename bench::GudhiInput<M>::TC;
+  const bench::GudhiInput<M> gudhi(in.points, in.planes);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   json r;
   r["input_rss_mb"] = peak_rss_mb();
   auto t0 = std::chrono::steady_clock::now();
   double c0 = cpu_seconds();
-  TC tc(points, M, k);
-  tc.set_tangent_planes(bases);
+  TC tc(gudhi.points, M, gudhi.kernel);
+  tc.set_tangent_planes(gudhi.bases);
   tc.compute_tangential_complex();
   r["stars_s"] = seconds_since(t0);
   r["stars_cpu_s"] = cpu_seconds() - c0;
