@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/spatial/distance.hpp"
+
 namespace delcert::refine {
 
 PointIndex::PointIndex(const io::PointSet& points) : d_(points.dimension) {
@@ -60,11 +62,7 @@ void PointIndex::for_each_in_ball(std::span<const double> q, double r2,
   }
   const std::size_t count = buffer_.size() / std::max(1, d_);
   for (std::size_t i = 0; i < count; ++i) {
-    double s = 0;
-    for (int j = 0; j < d_; ++j) {
-      double e = buffer_[i * d_ + j] - q[j];
-      s += e * e;
-    }
+    const double s = squared_distance({buffer_.data() + i * d_, static_cast<std::size_t>(d_)}, q);
     if (s <= r2) visit(buffer_first_ + i, s);
   }
 }
@@ -85,20 +83,11 @@ double PointIndex::nearest_distance2(std::span<const double> q, std::size_t* ind
   for (const auto& b : blocks_) {
     auto nn = b->tree.nearest(q, 1);
     if (nn.empty()) continue;
-    double s = 0;
-    for (int j = 0; j < d_; ++j) {
-      double e = b->coords[nn[0] * d_ + j] - q[j];
-      s += e * e;
-    }
-    consider(b->first + nn[0], s);
+    consider(b->first + nn[0], squared_distance({b->coords.data() + nn[0] * d_, static_cast<std::size_t>(d_)}, q));
   }
   const std::size_t count = buffer_.size() / std::max(1, d_);
   for (std::size_t i = 0; i < count; ++i) {
-    double s = 0;
-    for (int j = 0; j < d_; ++j) {
-      double e = buffer_[i * d_ + j] - q[j];
-      s += e * e;
-    }
+    const double s = squared_distance({buffer_.data() + i * d_, static_cast<std::size_t>(d_)}, q);
     consider(buffer_first_ + i, s);
   }
   if (index) *index = best_i;
