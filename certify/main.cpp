@@ -15,6 +15,7 @@
 #include "core/io/atomic_file.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/spec.hpp"
+#include "exact/interval.hpp"
 
 int main(int argc, char** argv) {
   using namespace delcert;
@@ -43,6 +44,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;
+  }
+  if (const std::string why = exact::directed_rounding_failure(); !why.empty()) {
+    std::cerr << "delcert-certify: internal error: directed rounding does not work on this machine or build (" << why
+              << "); no enclosure could be trusted\n";
+    std::printf("verdict: UNDECIDED\n");
+    return 3;
   }
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   try {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace delcert::exact {
@@ -71,5 +72,13 @@ class NearestRounding {
 bool rounding_is_upward();
 // True when the calling thread's rounding mode is round-to-nearest.
 bool rounding_is_nearest();
+
+// Start-up self-test of directed rounding: under UpwardRounding, 1 + 2^-60 must exceed 1 and
+// -1 - 2^-60 must equal -1, a product that overflows negatively must round to -DBL_MAX, and
+// CGAL's interval sum [1, 1] + [2^-60, 2^-60] must not be a point. The operands pass through
+// volatile memory so that no compiler can fold them at translation time. Returns an empty string
+// when all hold, else what failed: every enclosure in exact/ depends on this, so a program that
+// certifies must refuse to run when it fails (delcert-certify: internal error, exit 3).
+std::string directed_rounding_failure();
 
 }  // namespace delcert::exact

@@ -32,21 +32,40 @@ void check_finite(const double* x, int N) {
 //
 // Fast path: plain floating-point dot products with a rigorous error bound, turned into
 // intervals (several times cheaper than interval dot products). Notation: eps = 2^-52 bounds the
-// relative error of one rounding in any rounding mode; e_i = fl(x_i - p_i), exact d_i = x_i - p_i,
-// so |d_i - e_i| <= eps' |e_i|, eps' = eps / (1 - eps) (a subtraction with a subnormal result is
-// exact); u_i = U_ia exactly, m_i = U_mid, |u_i - m_i| <= r_i = U_rad. Then for b = sum u_i d_i:
-//  * the computed B = fl(sum m_i e_i) has |B - sum m_i e_i| <= gamma_N A + N eta, with
-//    A = sum |m_i| |e_i|, gamma_N = N eps / (1 - N eps), eta = 2^-1074 (an underflowing product);
+// relative error of one rounding of a result in the normal range, in any rounding mode;
+// e_i = fl(x_i - p_i), exact d_i = x_i - p_i; u_i = U_ia exactly, m_i = U_mid, |u_i - m_i| <= r_i =
+// U_rad, w_i = U_err >= (N + 3) eps |m_i| + (1 + 2 eps) r_i (computed in interval arithmetic and
+// rounded up, tangent_space.cpp).
+//
+// Overflow. Under upward rounding a result below -DBL_MAX rounds to -DBL_MAX, which is finite: a
+// finite computed value does NOT prove that nothing overflowed (this was a false CERTIFIED, see
+// fixtures/soundness/overflow). So the fast path is taken only when every intermediate is
+// provably in range, by two magnitude checks made on quantities that are themselves rounded up:
+//  (a) S^ = fl(sum e_i^2) is finite. A positive result that overflows rounds up to +inf, so every
+//      e_i^2 < DBL_MAX, |e_i| < 2^512: no subtraction x_i - p_i overflowed (an overflowing e_i
+//      would be +-DBL_MAX or +-inf, whose square is +inf).
+//  (b) Z^ = fl(sum w_i |e_i|) <= 2^900. Every product and sum of non-negative terms rounds up,
+//      so Z^ >= sum w_i |e_i| >= (N + 3) eps A, A = sum |m_i| |e_i|, hence
+//      A <= 2^900 / ((N + 3) 2^-52) < 2^952. Each |m_i e_i| and each partial sum of the m_i e_i is
+//      at most A, far below DBL_MAX: no product or sum in B overflowed.
+// Underflow. A product with a subnormal result has absolute error < eta = 2^-1074; a subtraction
+// or addition with a subnormal result is exact (Sterbenz / no bits lost below 2^-1074).
+// With (a) and (b), for b = sum u_i d_i:
+//  * |d_i - e_i| <= eps' |e_i|, eps' = eps / (1 - eps);
+//  * the computed B = fl(sum m_i e_i) has |B - sum m_i e_i| <= gamma_N A + N eta,
+//    gamma_N = N eps / (1 - N eps) (in any rounding mode, any summation order);
 //  * |b - sum m_i e_i| <= sum |u_i - m_i| |d_i| + sum |m_i| |d_i - e_i| <= (1 + eps') R + eps' A,
 //    R = sum r_i |e_i|;
 //  so |b - B| <= c1 A + c2 R + N eta with c1 = (N + 3) eps >= gamma_N + eps', c2 = 1 + 2 eps.
-//  U_err = w_i >= c1 |m_i| + c2 r_i (rounded up), so c1 A + c2 R <= Z = sum w_i |e_i|, and the
-//  computed Z^ (a sum of non-negative terms) has Z <= Z^ (1 + 2 (N + 2) eps) + N eta.
-//  Hence |b - B| <= E = Z^ (1 + 2 (N + 2) eps) + 2^-1000 (>= 2 N eta for N < 2^70), evaluated
-//  with upward rounding, and b lies in [B - E, B + E].
+//  Then c1 A + c2 R <= Z = sum w_i |e_i| <= Z^ (Z^ is rounded up term by term).
+//  Hence |b - B| <= E = Z^ (1 + 2 (N + 2) eps) + 2^-1000 (>= Z^ + 2 N eta for N < 2^70),
+//  evaluated with upward rounding (E <= 2^902, finite), and b lies in [B - E, B + E].
 // The squared norm s = |x - p|^2 uses the relative bound of a sum of non-negative terms (see
-// simplex_predicates.cpp): s in (S + [-2^-1000, 2^-1000]) [1 - 2c, 1 + 2c], c = (N + 3) eps.
-// Non-finite intermediate values fall back to plain interval arithmetic.
+// simplex_predicates.cpp): s in (S + [-2^-1000, 2^-1000]) [1 - 2c, 1 + 2c], c = (N + 3) eps;
+// S^ finite by (a), and an upper bound that overflows to +inf is still an upper bound.
+// Anything else (a non-finite value, Z^ > 2^900, N >= 2^20) falls back to plain interval
+// arithmetic, which is correct at every magnitude (CGAL's Interval_nt rounds each bound outward,
+// overflow going to +-inf).
 template <int M>
 void interval_row(const TangentSpace::Impl& s, const double* x, IA* row) {
   const int N = s.N;
@@ -62,10 +81,11 @@ void interval_row(const TangentSpace::Impl& s, const double* x, IA* row) {
       Z[a] += w[a] * ae;
     }
   }
-  bool finite = std::isfinite(S) && N < (1 << 20);
-  for (int a = 0; a < M; ++a) finite = finite && std::isfinite(B[a]) && std::isfinite(Z[a]);
-  if (!finite) {
-    check_finite(x, N);  // finite S implies finite coordinates; otherwise reject NaN / inf here
+  constexpr double kSafeBound = 0x1.0p900;  // (b) above
+  bool safe = std::isfinite(S) && N < (1 << 20);
+  for (int a = 0; a < M; ++a) safe = safe && Z[a] <= kSafeBound;  // false for NaN and +inf too
+  if (!safe) {
+    check_finite(x, N);  // reject NaN / inf coordinates here
     detail::chart_row<M>(s.U_interval.data(), [&](int i) { return IA(x[i]) - IA(s.p[i]); }, N, row);
     return;
   }

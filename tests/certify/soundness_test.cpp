@@ -1,0 +1,121 @@
+// The soundness cases of an outside review (fixtures/soundness/README.md): inputs on which an
+// earlier delcert-certify said CERTIFIED although the truth is REFUTED, or hung, or crashed. Each
+// must end as the README requires. A hang is bounded by `timeout` (exit 124), so it fails the
+// test instead of blocking it; the limit is generous (a wall-clock bound is not what is tested:
+// the README's limits are met by orders of magnitude).
+#include <regex>
+
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+std::string soundness(const std::string& f) { return q(fixture("soundness/" + f)); }
+std::string octahedron() {
+  return " --points " + q(fixture("points/octahedron.off")) + " --complex " + q(fixture("certify/octahedron.complex"));
+}
+RunResult certify_cmd(const std::string& args, const TempDir& dir, int seconds = 120) {
+  return run("timeout " + std::to_string(seconds) + " " + binary() + " " + args, dir);
+}
+bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+// Case "overflow": the filtered star of point 0 was {(0,1),(0,3)} (a chart row overflowed to
+// -DBL_MAX under upward rounding); the exact star is {(0,1),(0,2)}, and point 2 lies inside the
+// ball of [0,3].
+TEST(Soundness, OverflowCaseIsRefutedWithTheWitness) {
+  TempDir dir("sound-overflow");
+  const std::string cert = dir.file("cert.json");
+  RunResult r = certify_cmd("--manifold " + soundness("overflow/spec.json") + " --points " +
+                                soundness("overflow/points.txt") + " --complex " + soundness("overflow/complex.txt") +
+                                " --no-times --out " + q(cert),
+                            dir);
+  ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(last_line(r.out), "verdict: REFUTED");
+  auto j = nlohmann::json::parse(read_text(cert));
+  // Check 3 (stars) names the simplex [0,3] and the point 2 inside its ball.
+  bool witnessed = false;
+  for (const auto& c : j["checks"]) {
+    if (c["id"] != 3) continue;
+    EXPECT_EQ(c["verdict"], "REFUTED");
+    for (const auto& w : c["witnesses"]) {
+      const std::string t = w.dump();
+      if (has(t, "[0,3]") && w.contains("point") && w["point"] == 2) witnessed = true;
+    }
+    EXPECT_TRUE(witnessed) << c.dump(1);
+  }
+  // No check may print a certified margin contradicting its verdict (the old run printed a power
+  // margin of -4.32 next to CERTIFIED).
+  for (const auto& c : j["checks"])
+    if (c["name"] == "power_protection" && c["verdict"] == "CERTIFIED")
+      EXPECT_GE(std::stod(c["margin"]["min_power_margin"]["certified_lower_bound"].get<std::string>()), 0.0);
+
+  // Audit mode (no --complex): never CERTIFIED.
+  r = certify_cmd("--manifold " + soundness("overflow/spec.json") + " --points " + soundness("overflow/points.txt"), dir);
+  EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 3) << r.out << r.err;
+  EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
+}
+
+struct BadCase {
+  const char* name;
+  std::string args;
+  std::string message;  // expected in stderr
+};
+
+// The parse cases: each spec or claim means something else than it was read as; exit 2 with
+// file:line and no certificate.
+TEST(Soundness, ParseCasesAreRefusedWithFileAndLine) {
+  const std::vector<BadCase> cases = {
+      {"exponent wrap", "--manifold " + soundness("parse/spec-exponent-wrap.json") + octahedron(), "exponent"},
+      {"variable index", "--manifold " + soundness("parse/spec-varindex.json") + octahedron(), "variable"},
+      {"duplicate key", "--manifold builtin:sphere-2" + octahedron() + " --claims " + soundness("parse/claims-dupkey.json"),
+       "duplicate"},
+      {"slash", "--manifold builtin:sphere-2" + octahedron() + " --claims " + soundness("parse/claims-slash.json"),
+       "rational"},
+      {"exponent blow-up", "--manifold " + soundness("hang/spec-exponent-hang.json") + " --points " +
+                               soundness("hang/pts-sphere6.txt"),
+       "too large"},
+  };
+  for (const auto& c : cases) {
+    TempDir dir("sound-parse");
+    const std::string cert = dir.file("cert.json");
+    RunResult r = certify_cmd(c.args + " --out " + q(cert), dir, 60);
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.out << r.err;
+    EXPECT_TRUE(has(r.err, c.message)) << c.name << ": " << r.err;
+    EXPECT_TRUE(std::regex_search(r.err, std::regex(R"(\.json:[0-9]+)"))) << c.name << ": no file:line in " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(cert)) << c.name;
+  }
+}
+
+// A claim of 2^64 - 1 must be read exactly or refused, never wrapped.
+TEST(Soundness, HugeJsonIntegerIsNeverWrapped) {
+  TempDir dir("sound-u64");
+  RunResult r = certify_cmd("--manifold builtin:sphere-2" + octahedron() + " --claims " + soundness("parse/claims-u64.json"),
+                            dir, 60);
+  EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << r.out << r.err;
+}
+
+// A 32-vertex simplex in a complex claimed for a 2-manifold: REFUTED (wrong dimension) or refused,
+// at once, without enumerating 2^32 faces.
+TEST(Soundness, HugeSimplexIsRejectedAtOnce) {
+  TempDir dir("sound-32");
+  RunResult r = certify_cmd("--manifold builtin:sphere-2 --points " + soundness("hang/fib40.txt") + " --complex " +
+                                soundness("hang/complex-32simplex.txt"),
+                            dir, 60);
+  EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << r.out << r.err;
+  EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
+}
+
+// Four points 5e-324 apart on a plane: the neighbour grid must work at any magnitude. The
+// points are distinct doubles, so a verdict is owed (no internal error).
+TEST(Soundness, SubnormalCoordinatesGetAVerdict) {
+  TempDir dir("sound-subnormal");
+  RunResult r = certify_cmd("--manifold " + soundness("hang/spec-plane.json") + " --points " +
+                                soundness("hang/pts-subnormal.txt"),
+                            dir, 60);
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 3) << r.out << r.err;
+  EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
+}
+
+}  // namespace
+}  // namespace delcert::certify::test
