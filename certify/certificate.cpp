@@ -36,6 +36,37 @@ void CheckEntry::add_witness(json w, std::size_t cap) {
   if (witnesses.size() < cap) witnesses.push_back(std::move(w));
 }
 
+void CheckEntry::require_at_least(std::string what, double certified_lower_bound, const mpq_class& bound) {
+  requirements.push_back({std::move(what), certified_lower_bound, true, exact::enclose(bound).lo, bound.get_str()});
+}
+
+void CheckEntry::require_at_most(std::string what, double certified_upper_bound, const mpq_class& bound) {
+  requirements.push_back({std::move(what), certified_upper_bound, false, exact::enclose(bound).hi, bound.get_str()});
+}
+
+std::vector<std::string> Certificate::self_check_failures() const {
+  std::vector<std::string> out;
+  for (const auto& c : checks) {
+    if (c.verdict != Verdict::certified) continue;
+    for (const auto& r : c.requirements) {
+      // Written so that NaN fails too.
+      const bool ok = r.at_least ? r.value >= r.bound : r.value <= r.bound;
+      if (!ok)
+        out.push_back("check " + std::to_string(c.id) + " (" + c.name + ") is CERTIFIED but its certified " + r.what + " " +
+                      num(r.value) + (r.at_least ? " is below " : " is above ") + r.bound_text);
+    }
+  }
+  return out;
+}
+
+void enforce_self_consistency(const Certificate& certificate) {
+  const std::vector<std::string> failures = certificate.self_check_failures();
+  if (failures.empty()) return;
+  std::string what = "the certificate contradicts itself, so nothing is certified (please report this input): ";
+  for (std::size_t i = 0; i < failures.size(); ++i) what += (i ? "; " : "") + failures[i];
+  throw SelfCheckFailure(what);
+}
+
 Verdict Certificate::overall() const {
   bool undecided = false;
   for (const auto& c : checks) {

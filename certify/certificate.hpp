@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,23 @@ struct CheckEntry {
   void undecide(std::string why);
   // Appends a witness while keeping the list short; the total is counted in details.
   void add_witness(nlohmann::json w, std::size_t cap = 20);
+
+  // The internal consistency guard. A check records here what its CERTIFIED verdict implies
+  // about a certified bound it prints: "this lower bound is at least that", "this upper bound is
+  // at most that". The bounds and the verdicts are computed by different code (enclosures versus
+  // exact signs), so a violated requirement means the program itself is wrong: delcert-certify
+  // then stops with an internal error (exit 3) and certifies nothing. `bound` is exact; the
+  // comparison uses its enclosure's end on the permissive side, so a correct run never trips it.
+  struct Requirement {
+    std::string what;   // the printed quantity, e.g. "min_power_margin"
+    double value = 0;   // the certified bound printed in the certificate
+    bool at_least = true;
+    double bound = 0;   // the enclosure end of the exact requirement (lo for at_least, hi for at_most)
+    std::string bound_text;
+  };
+  std::vector<Requirement> requirements;
+  void require_at_least(std::string what, double certified_lower_bound, const mpq_class& bound);
+  void require_at_most(std::string what, double certified_upper_bound, const mpq_class& bound);
 };
 
 struct Certificate {
@@ -48,11 +66,23 @@ struct Certificate {
 
   // REFUTED if any check is refuted, else UNDECIDED if any is undecided, else CERTIFIED.
   Verdict overall() const;
+  // One line per violated requirement of a CERTIFIED check (see CheckEntry::requirements); empty
+  // when the certificate is consistent with itself.
+  std::vector<std::string> self_check_failures() const;
   // `with_times = false` leaves the only non-deterministic field out (byte-identical reruns).
   nlohmann::json to_json(bool with_times = true) const;
   // The JSON text written by delcert-certify: fields in a fixed reading order, 2-space indent.
   std::string to_text(bool with_times = true) const;
 };
+
+// Thrown by enforce_self_consistency: the program contradicted itself, so nothing is certified
+// (delcert-certify reports an internal error and exits with status 3).
+class SelfCheckFailure : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+// Throws SelfCheckFailure listing Certificate::self_check_failures() when there are any.
+void enforce_self_consistency(const Certificate& certificate);
 
 // JSON helpers shared by the checks. Doubles are printed with the shortest text that reads back
 // to the same double, so a printed bound is exactly the bound that was certified.

@@ -398,6 +398,10 @@ Certificate run_certify(const CertifyOptions& o) {
     }
   }
   if (cells) {
+    // What the verdicts imply about the printed bounds (the consistency guard, certificate.hpp).
+    prot.require_at_least("min_power_margin", min_margin.lo, 0);
+    if (claims.power_protection) prot.require_at_least("min_power_margin", min_margin.lo, *claims.power_protection);
+    if (claims.eps) radius.require_at_most("max_radius_squared", max_r2.hi, *claims.eps * *claims.eps);
     prot.margin = {{"min_power_margin", lower_bound_json(min_margin)}, {"attained_near", margin_at}};
     radius.margin = {{"max_radius_squared", {{"certified_upper_bound", num(max_r2.hi)}, {"enclosure", enclosure_json(max_r2)}}},
                      {"attained_at", radius_at}};
@@ -527,6 +531,7 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(radius);
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+  enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error
   return C;
 }
 

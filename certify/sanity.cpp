@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 #include "certify/grid.hpp"
 #include "certify/parallel.hpp"
@@ -75,6 +76,10 @@ int exact_rank(std::vector<mpq_class> a, int rows, int cols) {
 }
 
 exact::Interval sqrt_enclosure(const mpq_class& q) {
+  // MPFR's directed roundings give bounds within an ulp or two; then exact comparisons of squares
+  // move each end to the tightest double, so lo = the largest double with lo^2 <= q and hi = the
+  // smallest with hi^2 >= q. Tightness matters: a claim s with s^2 < q must give
+  // enclose(s).lo <= lo (the consistency guard of certificate.hpp relies on it).
   mpfr_t x;
   mpfr_init2(x, 53);
   mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDD);
@@ -84,6 +89,13 @@ exact::Interval sqrt_enclosure(const mpq_class& q) {
   mpfr_sqrt(x, x, MPFR_RNDU);
   double hi = mpfr_get_d(x, MPFR_RNDU);
   mpfr_clear(x);
+  auto square = [](double d) -> mpq_class {  // not auto: a gmpxx expression would dangle
+    mpq_class v(d);
+    return v * v;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  while (std::isfinite(lo) && square(std::nextafter(lo, inf)) <= q) lo = std::nextafter(lo, inf);
+  while (hi > 0 && std::isfinite(hi) && square(std::nextafter(hi, 0.0)) >= q) hi = std::nextafter(hi, 0.0);
   return {lo, hi};
 }
 
@@ -198,6 +210,7 @@ SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid,
     e.summary += " (no sparsity claim)";
   } else {
     e.claim = {{"sparsity", rational_to_string(*claim)}, {"meaning", "every two points at distance > sparsity"}};
+    e.require_at_least("min_distance", dist.lo, *claim);
     if (R.min_squared > *claim * *claim) {
       e.summary += " > claimed " + rational_to_string(*claim);
     } else {

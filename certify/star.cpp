@@ -518,21 +518,30 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   // tested minimum; it enters the reported lower bound otherwise).
   IA Rr = CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi));
   double need = (IA(2.25) * Rr).sup();
-  if (prot) need = std::max(need, (Rr + CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi) + ia(prot->enclosure()))).sup());
+  // With r >= (1 + 2^-20)(R + sqrt(R^2 + claim)), r^2 - 2 r R exceeds the claim by far more than
+  // the rounding of its interval evaluation below, so the printed margin stays above the claim.
+  if (prot)
+    need = std::max(need, (IA(1 + 0x1p-20) * (Rr + CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi) + ia(prot->enclosure())))).sup());
   need_radius = std::max(need_radius, need);
   exact::Interval margin{INFINITY, INFINITY};
   for (int q = 1; q < L.size(); ++q) {
     if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
     int s = tc.power_sign(q, ctx);
     exact::Interval pw = box.ok ? from(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
+    // The printed margin must never contradict an exact sign (the consistency guard in
+    // certificate.hpp checks it): where the box enclosure is too loose to show what the exact
+    // sign proved, print the enclosure of the exact value instead. enclose() is monotone, so
+    // power > 0 gives lo >= 0 and power > claim gives lo >= enclose(claim).lo.
+    if (s > 0 && !(pw.lo >= 0)) pw = exact::enclose(tc.power_exact(q));
     if (s < 0 && R.conflict < 0) R.conflict = L.global[q], R.conflict_power = pw;
     if (s == 0 && R.tie < 0) R.tie = L.global[q];
-    if (pw.lo < margin.lo) margin.lo = pw.lo, R.margin_point = L.global[q];
-    margin.hi = std::min(margin.hi, pw.hi);
     if (prot && R.protection_point < 0 && !(pw.lo > prot->enclosure().hi)) {
       int t = tc.power_sign(q, *prot, ctx);
       if (t <= 0) R.protection_point = L.global[q], R.protection_sign = t, R.protection_power = pw;
+      else if (!(pw.lo >= prot->enclosure().lo)) pw = exact::enclose(tc.power_exact(q));
     }
+    if (pw.lo < margin.lo) margin.lo = pw.lo, R.margin_point = L.global[q];
+    margin.hi = std::min(margin.hi, pw.hi);
   }
   if (!L.all) {  // untested points are farther than r from p: power > r^2 - 2 r R
     IA far = IA(L.radius) * IA(L.radius) - IA(2) * IA(L.radius) * Rr;
@@ -543,6 +552,8 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
     if (R.radius2.hi < eps2->enclosure().lo) R.eps_sign = -1;
     else if (R.radius2.lo > eps2->enclosure().hi) R.eps_sign = 1;
     else R.eps_sign = sgn(tc.squared_radius_exact() - eps2->value());
+    // As for the margin: a printed radius must not contradict the exact sign (enclose is monotone).
+    if (R.eps_sign < 0 && !(R.radius2.hi <= eps2->enclosure().hi)) R.radius2 = exact::enclose(tc.squared_radius_exact());
   }
   return R;
 }

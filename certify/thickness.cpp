@@ -133,6 +133,16 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
     }
     // Upsilon = sqrt of Upsilon^2: bounds rounded outward.
     exact::Interval ups{best.lo > 0 ? std::nextafter(std::sqrt(best.lo), 0.0) : 0.0, std::nextafter(std::sqrt(best.hi), INFINITY)};
+    if (gamma0 && n && !std::count(thin[j].begin(), thin[j].end(), 1)) {
+      // Every j-face was proven to have Upsilon^2 >= gamma0^(2j) exactly, so gamma0^j (rounded
+      // down) is a certified lower bound too; the tightening above stops 2^-20 short of it.
+      mpq_class gj = 1;
+      for (int k = 0; k < j; ++k) gj *= *gamma0;
+      ups.lo = std::max(ups.lo, exact::enclose(gj).lo);
+      // The consistency guard (certificate.hpp): the thinnest face's Upsilon, enclosed from its
+      // exact value independently of the sign predicates, cannot be below gamma0^j.
+      e.require_at_least("upper end of the thinnest " + std::to_string(j) + "-face's Upsilon", ups.hi, gj);
+    }
     std::vector<int> face(faces + arg * (j + 1), faces + arg * (j + 1) + j + 1);
     if (n) minima[std::to_string(j)] = {{"min_thickness", lower_bound_json(ups)}, {"simplex", face}, {"faces", n}};
     if (j == m && n) R.min_top = ups;

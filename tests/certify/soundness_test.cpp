@@ -33,22 +33,31 @@ TEST(Soundness, OverflowCaseIsRefutedWithTheWitness) {
   ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(last_line(r.out), "verdict: REFUTED");
   auto j = nlohmann::json::parse(read_text(cert));
-  // Check 3 (stars) names the simplex [0,3] and the point 2 inside its ball.
-  bool witnessed = false;
+  // Check 3 (stars) names the missing simplex [0,2] of star(0); check 4 (consistency) names the
+  // simplex [0,3] and the point 2 strictly inside its ball (exact sign -1).
+  bool missing = false, inside = false;
   for (const auto& c : j["checks"]) {
-    if (c["id"] != 3) continue;
-    EXPECT_EQ(c["verdict"], "REFUTED");
-    for (const auto& w : c["witnesses"]) {
-      const std::string t = w.dump();
-      if (has(t, "[0,3]") && w.contains("point") && w["point"] == 2) witnessed = true;
+    if (c["id"] == 3) {
+      EXPECT_EQ(c["verdict"], "REFUTED");
+      for (const auto& w : c["witnesses"])
+        missing = missing || (w["kind"] == "missing_simplex" && w["simplex"] == nlohmann::json({0, 2}));
     }
-    EXPECT_TRUE(witnessed) << c.dump(1);
+    if (c["id"] == 4) {
+      EXPECT_EQ(c["verdict"], "REFUTED");
+      for (const auto& w : c["witnesses"])
+        inside = inside || (w["kind"] == "point_in_ball" && w["simplex"] == nlohmann::json({0, 3}) && w["point"] == 2 &&
+                            w["exact_sign"] == -1);
+    }
   }
+  EXPECT_TRUE(missing) << j["checks"].dump(1);
+  EXPECT_TRUE(inside) << j["checks"].dump(1);
   // No check may print a certified margin contradicting its verdict (the old run printed a power
   // margin of -4.32 next to CERTIFIED).
-  for (const auto& c : j["checks"])
-    if (c["name"] == "power_protection" && c["verdict"] == "CERTIFIED")
+  for (const auto& c : j["checks"]) {
+    if (c["name"] == "power_protection" && c["verdict"] == "CERTIFIED") {
       EXPECT_GE(std::stod(c["margin"]["min_power_margin"]["certified_lower_bound"].get<std::string>()), 0.0);
+    }
+  }
 
   // Audit mode (no --complex): never CERTIFIED.
   r = certify_cmd("--manifold " + soundness("overflow/spec.json") + " --points " + soundness("overflow/points.txt"), dir);

@@ -1,0 +1,92 @@
+// The internal consistency guard (certify/certificate.hpp): a CERTIFIED check whose printed
+// certified bound contradicts what the verdict requires makes the whole run an internal error;
+// and on real inputs with claims as tight as rationals allow, the guard never trips.
+#include "exact/number_types.hpp"
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+TEST(ConsistencyGuard, CertifiedCheckWithContradictingMarginFails) {
+  Certificate C;
+  CheckEntry e;
+  e.id = 6;
+  e.name = "power_protection";
+  e.require_at_least("min_power_margin", -4.32, 0);  // the false CERTIFIED of the overflow case
+  C.checks.push_back(e);
+  const auto failures = C.self_check_failures();
+  ASSERT_EQ(failures.size(), 1u);
+  EXPECT_NE(failures[0].find("min_power_margin -4.32 is below 0"), std::string::npos) << failures[0];
+  EXPECT_THROW(enforce_self_consistency(C), SelfCheckFailure);
+}
+
+TEST(ConsistencyGuard, ComparesWithTheEnclosureOfTheExactRequirement) {
+  CheckEntry e;
+  e.verdict = Verdict::certified;
+  // 1/3 is not a double: a certified lower bound equal to the double just below 1/3 meets
+  // "at least 1/3" as far as doubles can show, one ulp lower does not.
+  const double below = exact::enclose(mpq_class(1, 3)).lo;
+  e.require_at_least("x", below, mpq_class(1, 3));
+  e.require_at_least("y", std::nextafter(below, 0.0), mpq_class(1, 3));
+  e.require_at_most("z", exact::enclose(mpq_class(1, 3)).hi, mpq_class(1, 3));
+  e.require_at_most("w", 1.0, mpq_class(1, 3));
+  e.require_at_least("nan", std::nan(""), mpq_class(0));
+  Certificate C;
+  C.checks.push_back(e);
+  const auto failures = C.self_check_failures();
+  ASSERT_EQ(failures.size(), 3u);
+  EXPECT_NE(failures[0].find("certified y"), std::string::npos);
+  EXPECT_NE(failures[1].find("certified w"), std::string::npos);
+  EXPECT_NE(failures[2].find("certified nan"), std::string::npos);
+}
+
+TEST(ConsistencyGuard, OnlyCertifiedChecksAreHeldToTheirRequirements) {
+  for (Verdict v : {Verdict::refuted, Verdict::undecided, Verdict::report}) {
+    CheckEntry e;
+    e.verdict = v;
+    e.require_at_least("min_power_margin", -4.32, 0);
+    Certificate C;
+    C.checks.push_back(e);
+    EXPECT_TRUE(C.self_check_failures().empty());
+    EXPECT_NO_THROW(enforce_self_consistency(C));
+  }
+}
+
+// Claims as close to the true values as a short rational gets: the octahedron's minimum power
+// margin is exactly 4 and its minimum distance exactly sqrt(2). Claims just below them are
+// CERTIFIED, and the printed bounds must not fall below the claims (the guard would turn the run
+// into an internal error if they did).
+TEST(ConsistencyGuard, TightClaimsCertifyWithoutTrippingTheGuard) {
+  TempDir dir("guard");
+  const std::string claims = dir.file("claims.json");
+  {
+    std::ofstream out(claims);
+    out << R"({"format": "delcert-claims v1", "sparsity": "1.4142135623730950488016887242096",)"
+        << R"( "power_protection": "3.9999999999999999999999999999", "gamma0": "0.5", "eps": "1.5"})";
+  }
+  const std::string cert = dir.file("cert.json");
+  RunResult r = run(binary() + " --manifold builtin:sphere-2 --points " + q(fixture("points/octahedron.off")) +
+                        " --complex " + q(fixture("certify/octahedron.complex")) + " --claims " + q(claims) +
+                        " --no-times --out " + q(cert),
+                    dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  auto j = nlohmann::json::parse(read_text(cert));
+  for (const auto& c : j["checks"]) {
+    if (c["name"] == "power_protection") {
+      const double lo = std::stod(c["margin"]["min_power_margin"]["certified_lower_bound"].get<std::string>());
+      EXPECT_GE(lo, exact::enclose(mpq_class("39999999999999999999999999999/10000000000000000000000000000")).lo);
+    }
+    if (c["name"] == "sparsity") {
+      const double lo = std::stod(c["margin"]["min_distance"]["certified_lower_bound"].get<std::string>());
+      // The tightest double lower bound of sqrt(2): lo^2 <= 2 < next(lo)^2, exactly.
+      const mpq_class a(lo), b(std::nextafter(lo, 2.0));
+      EXPECT_LE(a * a, 2);
+      EXPECT_GT(b * b, 2);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace delcert::certify::test
