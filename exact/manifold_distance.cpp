@@ -222,7 +222,7 @@ DistanceCertificate ManifoldDistance::certify(std::span<const double> p) const {
       Eigen::VectorXd dt = lu.solve(-g);
       if (!dt.allFinite()) break;
       t += dt;
-      if (dt.lpNorm<Eigen::Infinity>() <= 0x1p-60 * scale) break;
+      if (dt.lpNorm<Eigen::Infinity>() <= 0x1p-50 * scale) break;  // at rounding level
     }
     if (!t.allFinite()) t.setZero();
   }
@@ -249,13 +249,21 @@ DistanceCertificate ManifoldDistance::certify(std::span<const double> p) const {
       region = to_box(X);
       break;
     }
-    NearestRounding nearest;  // next candidate: the hull of T and K, widened (any box is fine)
+    out.failure = "the Krawczyk operator never mapped the normal slice box into itself";
+    // Next candidate: the hull of T and K, widened (any box is fine), unless it would be wider
+    // than the guess itself plus 2^-10 of the scale (then K is wild: J_G is nearly singular).
+    NearestRounding nearest;
+    const double cap = 2 * t.lpNorm<Eigen::Infinity>() + 0x1p-10 * scale;
+    Box next(k);
+    bool too_wide = false;
     for (int i = 0; i < k; ++i) {
       const double lo = std::min(T[i].lo, K[i].lo), hi = std::max(T[i].hi, K[i].hi);
       const double c = lo + 0.5 * (hi - lo), rr = (hi - lo) * 1.5 + 0x1p-44 * scale;
-      T[i] = {c - rr, c + rr};
+      next[i] = {c - rr, c + rr};
+      too_wide = too_wide || !(std::max(std::abs(c - rr), std::abs(c + rr)) <= cap);
     }
-    out.failure = "the Krawczyk operator never mapped the normal slice box into itself";
+    if (too_wide) break;
+    T = std::move(next);
   }
   {
     NearestRounding nearest;
@@ -267,8 +275,10 @@ DistanceCertificate ManifoldDistance::certify(std::span<const double> p) const {
   out.failure.clear();
 
   // ---- 3. Contraction R <- K(R) n R (t* stays in R), then the zero box and the distance. ----
+  // Stops when a step shrinks R by less than 1/8 or R is already at rounding level (2^-50 of the
+  // coordinates' scale: the bound is then within a few ulps of |A^T t*|).
   Box R = K;
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < 8 && total_width(R) > 0x1p-50 * scale; ++it) {
     Box K2;
     std::vector<IA> X2;
     if (!slice.krawczyk(R, K2, X2)) break;
