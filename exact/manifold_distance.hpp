@@ -36,8 +36,9 @@
 // A and the Newton guess t~ are computed in round-to-nearest floating point; they affect how often
 // the test succeeds, never its correctness (A is used exactly as the doubles it holds).
 //
-// Cost: a handful of interval evaluations of F and J_F per point (typically 3-6 Krawczyk steps),
-// O(k N) polynomial evaluations each; no exact arithmetic.
+// Cost: a handful of interval evaluations of F and J_F per point (typically 2-3 Krawczyk steps),
+// O(k N) polynomial evaluations each; no exact arithmetic (about 6 us per point on S^2, 60 us
+// on SO(3), one core).
 #pragma once
 
 #include <memory>
