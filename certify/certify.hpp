@@ -1,6 +1,6 @@
 // delcert-certify's driver: reads the inputs, runs checks 1-10 and assembles the certificate.
 //
-//   1 input_sanity       points on M (exact residuals), right component, full-rank Jacobian
+//   1 input_sanity       points near M (exact residuals, certified distance), right component, full-rank Jacobian
 //   2 sparsity           exact minimum distance and its pair; the sparsity claim
 //   3 stars              the complex is exactly the tangential Delaunay complex Del_TM(P)
 //   4 consistency        every simplex is in the star of each of its vertices

@@ -2,9 +2,13 @@
 //
 // Input sanity is mostly enforced as bad input (exit status 2, "file:line: problem"): the
 // readers refuse malformed files and bit-identical points; here every point must also satisfy
-// |F_i(p)| <= residual_tolerance exactly, lie where the selector is > 0, and have a full-rank
-// Jacobian (so that T_p = p + ker J_F(p) is an m-flat). The certificate entry records the
-// certified maximum residual.
+// |F_i(p)| <= residual_tolerance exactly, lie where the selector is > 0, have a full-rank
+// Jacobian (so that T_p = p + ker J_F(p) is an m-flat), and be certifiably near M: an interval
+// Krawczyk test (exact/manifold_distance.hpp) must prove a point x* of M within a certified
+// distance of p and a full-rank J_F on a box around x*. The residual alone proves neither (a
+// spec with a rank-deficient Jacobian on M, such as (|x|^2 - 1)^2 = 0, has tiny residuals at
+// points up to sqrt(tolerance) away, and no tangent space). The certificate entry records the
+// certified maximum residual and the certified maximum distance to M.
 #pragma once
 
 #include <string>
@@ -23,7 +27,8 @@ class PointGrid;
 std::vector<long> point_line_numbers(const std::string& points_text);
 
 // Throws io::InputError naming the points file and the point's line for a point off M (beyond
-// the tolerance), on the wrong component, or where the Jacobian is rank-deficient.
+// the tolerance), on the wrong component, where the Jacobian is rank-deficient, or where no
+// point of M can be certified nearby (never a verdict: bad input, exit status 2).
 CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
                               const std::string& points_file, int threads);
 
