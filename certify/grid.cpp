@@ -1,59 +1,163 @@
 #include "certify/grid.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
+// Why the grid returns a SUPERSET of every queried box, at any scale and in any rounding mode.
+//
+// Assumptions: IEEE-754 binary64 with gradual underflow (no flush-to-zero / denormals-are-zero:
+// the project never enables them, no -ffast-math); every basic operation is correctly rounded in
+// the CURRENT rounding mode, which may be to-nearest (the constructor, called from certify.cpp)
+// or upward (ball() is called from certify/star.cpp inside exact::UpwardRounding), or any other.
+// Input coordinates are finite (the points reader refuses anything else).
+//
+// 1. Cell edge h = 2^e, e an integer in [-1074, 1023]. The scaled value s(x) = x * f1 * f2 with
+//    f1 * f2 = 2^-e (f1 = 2^-e when e >= -1022, else f1 = 2^1022 and f2 = 2^(-e-1022) <= 2^52;
+//    every factor is an exact double). Multiplying by a power of two is EXACT in every rounding
+//    mode unless the result overflows or is subnormal with lost bits:
+//      - f > 1 only grows |x|: exact unless it overflows (then s is +-inf or +-DBL_MAX with the
+//        sign of x, depending on the mode: in every case |s| >= 2^1023);
+//      - f1 < 1 (e > 0) may underflow: then |true s| < 2^-1022 and, rounding being monotone and
+//        2^-1022 a double, |computed s| <= 2^-1022 (possibly 0 or -0); x itself is exact, and its
+//        sign decides floor(true s), which is 0 or -1.
+//    scaled_floor(x) := (x < 0 && s > -1) ? -1 : floor(s). Claim: it equals floor(x / 2^e)
+//    exactly whenever |x / 2^e| <= 2^1001. Proof: if |true s| >= 1 it is normal and (no
+//    overflow) s is exact, floor(s) is exact; if 0 <= true s < 1 then s is exact or underflowed
+//    to |s| <= 2^-1022, either way in [0, 1) and floor gives 0 (floor(-0) = -0 == 0); if
+//    -1 < true s < 0 the first branch gives -1 (x < 0, and s > -1 because s is exact or
+//    |s| <= 2^-1022). When |x / 2^e| > 2^1001 the result has the right sign and magnitude
+//    > 2^1001 (exact, or overflowed to |s| >= 2^1023), which is all the clamp in 3. needs.
+// 2. For each axis, k0 = scaled_floor(lo), k1 = scaled_floor(hi) are exact: e is chosen with
+//    |x| / 2^e <= 2^1001 for every point (e >= ilogb(max |coordinate|) - 1000). The number of cells
+//    k1 - k0 + 1 is accepted only if the computed k1 - k0 is below 2^31: the true difference is
+//    an integer, so if it is below 2^31 it is representable and computed exactly; if it is not,
+//    monotone rounding (2^31 being a double) makes the computed value >= 2^31 and e is increased.
+//    The product of the cells per axis is kept <= 2^62 with exact int64 arithmetic (fits()).
+// 3. index(t, x) = clamp(scaled_floor(x), k0, k1) - k0. The clamp is exact (comparisons), and the
+//    subtraction of two integers whose difference lies in [0, 2^31) is exact. So index is the
+//    MATHEMATICAL function clamp(floor(x / h), k0, k1) - k0 of the real x: monotone in x and
+//    independent of the rounding mode (values beyond 2^1001 clamp to the right end by 1.).
+// 4. A query (c, r): every q with |q_k - c_k| <= r satisfies L <= c_k - r <= q_k <= c_k + r <= U
+//    with L = nextafter(fl(c_k - r), -inf), U = nextafter(fl(c_k + r), +inf): in every rounding mode
+//    fl(v) is one of the two doubles bracketing v (or v itself), so its predecessor is <= v and its
+//    successor >= v, also when fl overflows (+-inf, or +-DBL_MAX under a directed mode whose
+//    neighbour is +-inf). By 3., index(L) <= index(q_k) <= index(U): the query scans every cell
+//    index between them, hence every such q. NaN centres or radii return every point.
+// 5. Keys are the mixed-radix numbers of the index tuples, below the product of dims <= 2^62, so
+//    they are distinct and decode exactly (the "scan every occupied cell" path).
+//
+// Cost: an index is two multiplications, a floor and a clamp (the old code: a subtraction, a
+// division and a floor); a query adds two nextafter per axis. The cell edge is the power of two
+// nearest (in ratio) to the old choice of three spacings, so cells are within a factor sqrt(2) of
+// the old ones per axis.
+
 namespace delcert::certify {
+
+namespace {
+
+// The power of two nearest to h > 0 (finite) in ratio: exponent e with 2^e in [h/sqrt2, h sqrt2].
+int nearest_exponent(double h) {
+  int x = 0;
+  double f = std::frexp(h, &x);  // h = f 2^x, f in [0.5, 1)
+  return f < std::numbers::sqrt2 / 2 ? x - 1 : x;
+}
+
+}  // namespace
+
+double PointGrid::scaled_floor(double x) const {
+  const double s = (x * f1_) * f2_;
+  return (x < 0 && s > -1) ? -1.0 : std::floor(s);
+}
+
+std::int64_t PointGrid::index(int t, double x) const {
+  return static_cast<std::int64_t>(std::clamp(scaled_floor(x), k0_[t], k1_[t]) - k0_[t]);
+}
 
 PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : points_(points) {
   const int N = points.dimension;
   const std::size_t n = points.size();
-  std::vector<double> lo(N, 0), hi(N, 0);
+  std::vector<double> lo(N, 0), hi(N, 0), ext(N, 0);
   for (int k = 0; k < N; ++k) {
     lo[k] = hi[k] = n ? points.point(0)[k] : 0;
     for (std::size_t i = 1; i < n; ++i) {
       lo[k] = std::min(lo[k], points.point(i)[k]);
       hi[k] = std::max(hi[k], points.point(i)[k]);
     }
+    // An upper bound of hi - lo in any rounding mode (+inf when it overflows).
+    ext[k] = std::nextafter(hi[k] - lo[k], INFINITY);
   }
   std::vector<int> by_extent(N);
   std::iota(by_extent.begin(), by_extent.end(), 0);
-  std::stable_sort(by_extent.begin(), by_extent.end(), [&](int a, int b) { return hi[a] - lo[a] > hi[b] - lo[b]; });
-  double extent = 0, diag2 = 0, magnitude = 0;
+  std::stable_sort(by_extent.begin(), by_extent.end(), [&](int a, int b) { return ext[a] > ext[b]; });
+  double extent = 0, magnitude = 0;
   for (int k = 0; k < N; ++k) {
-    extent = std::max(extent, hi[k] - lo[k]);
-    diag2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    extent = std::max(extent, ext[k]);
     magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
   }
-  diameter_ = std::sqrt(diag2) * (1 + 1e-12) + 1e-300;
-  if (extent <= 0) extent = 1;
-  double dim = std::max(1, std::min(m, 3));
+  // Every distance is at most sqrt(N) * extent; c >= sqrt(N) (the 2^-30 margin exceeds the
+  // rounding of sqrt and of the product) and the final nextafter covers the product's rounding,
+  // including in the subnormal range. Capped at DBL_MAX (finite: callers double radii up to it).
+  const double c = std::sqrt(double(std::max(N, 1))) * (1 + 0x1p-30);
+  diameter_ = std::min(std::nextafter(extent * c, INFINITY), DBL_MAX);
+  if (!(extent > 0)) extent = 1;  // one point (duplicates are refused by the reader)
+  extent = std::min(extent, DBL_MAX);
+  const double dim = std::max(1, std::min(m, 3));
   // About three sample spacings per cell: a query visits few cells, most of them occupied.
-  spacing_ = extent * std::pow(1.0 / std::max<double>(1, double(n)), 1.0 / dim);
-  h_ = cell_hint > 0 ? cell_hint : 3 * spacing_;
-  h_ = std::max(h_, std::ldexp(std::max(extent, magnitude), -30));
+  spacing_ = std::clamp(extent * std::pow(1.0 / std::max<double>(1, double(n)), 1.0 / dim), DBL_TRUE_MIN, DBL_MAX);
+  const double want = cell_hint > 0 && cell_hint <= DBL_MAX ? cell_hint : 3 * std::min(spacing_, DBL_MAX / 4);
+  // e >= -1074 (2^e a double), e <= 1023, and |x| / 2^e <= 2^1001 for every coordinate x.
+  const int e_min = std::max(-1074, magnitude > 0 ? std::ilogb(magnitude) + 1 - 1001 : -1074);
+  const int e_start = std::clamp(nearest_exponent(want), e_min, 1023);
+
+  auto set_exponent = [&](int e) {
+    e_ = e;
+    if (e >= -1022) {
+      f1_ = std::ldexp(1.0, -e), f2_ = 1;
+    } else {
+      f1_ = 0x1p1022, f2_ = std::ldexp(1.0, -e - 1022);
+    }
+  };
+  // Sets k0_, k1_, dims_ for the current axes and exponent; false when a limit is exceeded.
+  auto fits = [&]() {
+    k0_.clear(), k1_.clear(), dims_.clear();
+    std::int64_t total = 1;
+    for (int a : axes_) {
+      k0_.push_back(scaled_floor(lo[a]));
+      k1_.push_back(scaled_floor(hi[a]));
+      const double d = k1_.back() - k0_.back();
+      if (!(d < kMaxCellsPerAxis)) return false;  // the true count is >= 2^31 (see 2.)
+      dims_.push_back(static_cast<std::int64_t>(d) + 1);
+      // total <= 2^62 and dims <= 2^31: the product below is < 2^93 -- test before multiplying.
+      if (dims_.back() > static_cast<std::int64_t>(kMaxCells) / total) return false;
+      total *= dims_.back();
+    }
+    return true;
+  };
+  auto total_cells = [&]() {
+    double total = 1;
+    for (auto d : dims_) total *= double(d);
+    return total;
+  };
   // Up to kMaxAxes axes (a fourth axis cuts the candidates of a 3-manifold in R^4 several fold),
   // but only three when four would not fit a dense table.
   auto dense_ok = [&](double total) { return total <= std::max(64.0 * double(n), double(1 << 20)) && total <= double(1 << 24); };
   for (int A = std::min(N, kMaxAxes); A >= 1; --A) {
     axes_.assign(by_extent.begin(), by_extent.begin() + A);
-    origin_.clear();
-    dims_.clear();
-    double total = 1;
-    for (int a : axes_) {
-      origin_.push_back(lo[a]);
-      dims_.push_back(static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1);
-      total *= double(dims_.back());
-    }
-    if (A <= 3 || dense_ok(total)) break;
+    int e = e_start;
+    set_exponent(e);
+    // Terminates: at e = 1023 every coordinate scales into [-2, 2), so each axis has <= 4 cells.
+    while (!fits()) set_exponent(++e);
+    if (A <= 3 || dense_ok(total_cells())) break;
   }
+  if (axes_.empty()) set_exponent(e_start);
+
   std::vector<std::int64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::int64_t idx[kMaxAxes] = {0, 0, 0, 0};
-    for (std::size_t t = 0; t < axes_.size(); ++t)
-      idx[t] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((points.point(i)[axes_[t]] - origin_[t]) / h_)), 0,
-                                        dims_[t] - 1);
+    for (std::size_t t = 0; t < axes_.size(); ++t) idx[t] = index(static_cast<int>(t), points.point(i)[axes_[t]]);
     keys[i] = key(idx);
   }
   order_.resize(n);
@@ -65,8 +169,7 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
     cells_[keys[order_[i]]] = {static_cast<int>(i), static_cast<int>(j)};
     i = j;
   }
-  double total = 1;
-  for (auto d : dims_) total *= double(d);
+  const double total = total_cells();
   if (dense_ok(total)) {
     dense_.assign(static_cast<std::size_t>(total) + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++dense_[keys[i] + 1];
@@ -75,7 +178,7 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
 }
 
 std::int64_t PointGrid::key(const std::int64_t* idx) const {
-  std::int64_t k = 0;
+  std::int64_t k = 0;  // < product of dims_ <= 2^62: no overflow (see 5.)
   for (std::size_t t = 0; t < axes_.size(); ++t) k = k * dims_[t] + idx[t];
   return k;
 }
@@ -88,20 +191,21 @@ std::vector<int> PointGrid::candidates(std::span<const double> c, double r) cons
 
 std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
   std::vector<int> out;
-  out.reserve(64);
   const int A = static_cast<int>(axes_.size());
+  if (A == 0 || order_.empty()) return order_;  // no axis (dimension 0): every point
+  out.reserve(64);
   std::int64_t lo[kMaxAxes] = {0, 0, 0, 0}, hi[kMaxAxes] = {0, 0, 0, 0};
   double cells = 1;
   for (int t = 0; t < A; ++t) {
-    // The 2^-10 cell widening absorbs the rounding of the index computation (see header).
-    double a = std::floor((c[axes_[t]] - r - origin_[t]) / h_ - 0x1p-10),
-           b = std::floor((c[axes_[t]] + r - origin_[t]) / h_ + 0x1p-10);
-    lo[t] = static_cast<std::int64_t>(std::clamp<double>(a, 0, double(dims_[t] - 1)));
-    hi[t] = static_cast<std::int64_t>(std::clamp<double>(b, 0, double(dims_[t] - 1)));
-    if (b < 0 || a > double(dims_[t] - 1)) return out;  // the box misses the grid
+    const double x = c[axes_[t]];
+    // Proof step 4: L <= c - r and U >= c + r in every rounding mode; a, b as in step 1.
+    const double a = scaled_floor(std::nextafter(x - r, -INFINITY)), b = scaled_floor(std::nextafter(x + r, INFINITY));
+    if (std::isnan(a) || std::isnan(b)) return order_;  // NaN centre or radius: every point
+    if (b < k0_[t] || a > k1_[t]) return out;             // the box misses every point (exact test)
+    lo[t] = static_cast<std::int64_t>(std::max(a, k0_[t]) - k0_[t]);  // = index(t, L), step 3
+    hi[t] = static_cast<std::int64_t>(std::min(b, k1_[t]) - k0_[t]);  // = index(t, U)
     cells *= double(hi[t] - lo[t] + 1);
   }
-  if (A == 0) return order_;  // no axis (dimension 0): every point
   if (cells >= double(cells_.size()) && dense_.empty()) {  // cheaper to scan every occupied cell
     for (const auto& [k, range] : cells_) {
       std::int64_t rest = k, idx[kMaxAxes] = {0, 0, 0, 0};
@@ -137,11 +241,18 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
   return out;
 }
 
+// The filter keeps every point of B(c, r), in any rounding mode: if |x - c| <= r then r is finite
+// or +inf. If r * r * (1 + 2^-40) overflows to +inf (or is NaN-free +inf) every candidate is kept.
+// Otherwise r < 2^512 and every |x_j - c_j| <= r, so no operation below overflows; each of the N
+// differences, squares and sums is correctly rounded, so the computed d2 is at most
+// |x - c|^2 (1 + 2^-52)^(N+2) + (2N) 2^-1074 (the absolute term: rounding in the subnormal
+// range), and the computed r2 is at least r^2 (1 + 2^-40)(1 - 2^-52)^2. For N <= 64 and
+// r2 > 1e-280 the first is below the second. Below 1e-280 every candidate is kept.
 std::vector<int> PointGrid::ball(std::span<const double> c, double r) const {
   std::vector<int> out = gather(c, r);
   const int N = points_.dimension;
   const double r2 = r * r * (1 + 0x1p-40);
-  if (!(r2 > 1e-280)) {  // too small to filter safely (underflow): keep every candidate
+  if (!(r2 > 1e-280) || !(r2 <= DBL_MAX)) {  // too small to filter safely, infinite, or NaN: keep all
     std::sort(out.begin(), out.end());
     return out;
   }

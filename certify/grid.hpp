@@ -4,11 +4,10 @@
 // Sufficiency (what the certifier relies on): candidates(c, r) returns every point q with
 // |q_k - c_k| <= r on the grid's axes, hence every point of the closed ball B(c, r) (projection
 // onto coordinate axes does not increase distances); ball(c, r) keeps those whose floating-point
-// distance is at most r (1 + 2^-40), which still contains every point of B(c, r) because that
-// computation's relative error is below (N + 4) 2^-52. Cell indices are computed in floating
-// point: cells are never smaller than 2^-30 times max(extent, largest |coordinate|), so an index
-// is off by less than 2^-20 of a cell, and the query widens its index range by 2^-10 of a cell
-// on each side.
+// distance passes a filter that provably keeps every point of B(c, r). Both hold for any input
+// magnitude (subnormal to DBL_MAX, mixed), any number of points and under any IEEE rounding mode
+// (the grid is built under round-to-nearest and queried from certify/star.cpp under
+// exact::UpwardRounding): cell indices are computed EXACTLY, see the proof in grid.cpp.
 #pragma once
 
 #include <cstdint>
@@ -23,31 +22,43 @@ namespace delcert::certify {
 class PointGrid {
  public:
   static constexpr int kMaxAxes = 4;
+  // Cells per axis are below 2^31 and their product is at most 2^62 (int64 keys never wrap):
+  // the cell size grows when a hint or the point count would ask for more.
+  static constexpr double kMaxCellsPerAxis = 0x1p31;
+  static constexpr double kMaxCells = 0x1p62;
 
   // `cell_hint`: intended cell size (e.g. a typical spacing); <= 0 picks one from the point count
-  // and the intrinsic dimension m.
+  // and the intrinsic dimension m. The cell size actually used is a power of two near it.
   PointGrid(const io::PointSet& points, int intrinsic_dimension, double cell_hint = 0);
 
   // Indices of every point q with |q_k - c_k| <= r on the grid axes (a superset of B(c, r)),
-  // in increasing index order.
+  // in increasing index order. A NaN radius or centre returns every point.
   std::vector<int> candidates(std::span<const double> c, double r) const;
   // The candidates within floating-point distance r (1 + 2^-40) of c: still every point of B(c, r).
   std::vector<int> ball(std::span<const double> c, double r) const;
 
-  double cell_size() const { return h_; }
-  // A rough typical distance between neighbouring points (a starting radius for searches).
+  // The cell edge 2^cell_exponent() (a power of two, possibly subnormal).
+  int cell_exponent() const { return e_; }
+  // A rough typical distance between neighbouring points (a starting radius for searches):
+  // positive and finite.
   double spacing() const { return spacing_; }
-  // Length of the diagonal of the bounding box: any r at least this covers every point.
+  // An upper bound on the distance between any two points, positive and finite (capped at
+  // DBL_MAX): any r at least the true diameter covers every point (r = +inf always does).
   double diameter() const { return diameter_; }
 
  private:
+  // floor(x / 2^e_) clamped to [k0, k1] of axis t, minus k0: exact, see grid.cpp.
+  std::int64_t index(int t, double x) const;
+  double scaled_floor(double x) const;  // floor(x / 2^e_) exactly (when it does not overflow)
   std::int64_t key(const std::int64_t* idx) const;
   std::vector<int> gather(std::span<const double> c, double r) const;  // candidates, unsorted
   const io::PointSet& points_;
   std::vector<int> axes_;          // up to kMaxAxes coordinate indices
-  std::vector<double> origin_;     // per axis
-  std::vector<std::int64_t> dims_; // cells per axis
-  double h_ = 1, diameter_ = 0, spacing_ = 1;
+  std::vector<double> k0_, k1_;    // per axis: floor(lo / 2^e), floor(hi / 2^e) (integers)
+  std::vector<std::int64_t> dims_; // cells per axis: k1 - k0 + 1
+  int e_ = 0;
+  double f1_ = 1, f2_ = 1;         // 2^-e = f1 * f2, each factor a double (f2 != 1 only if e < -1022)
+  double diameter_ = 0, spacing_ = 1;
   std::vector<int> order_;  // point indices sorted by cell key
   std::unordered_map<std::int64_t, std::pair<int, int>> cells_;  // key -> [begin, end) in order_
   std::vector<int> dense_;  // when the grid is small enough: key -> begin in order_ (CSR, #cells + 1)

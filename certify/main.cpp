@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
   }
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   try {
+    // --out must not be (the same file as) an input, nor unwritable: checked before any work.
+    if (!out.empty()) io::check_output_path(out, "--out", {o.manifold, o.points, o.complex, o.claims});
     certify::Certificate cert = certify::run_certify(o);
     if (!out.empty()) io::write_file_atomically(out, cert.to_text(!no_times));
     for (const auto& c : cert.checks)

@@ -4,6 +4,8 @@
 #include <array>
 #include <map>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace delcert::certify {
 
@@ -94,7 +96,12 @@ long FaceLattice::find(int k, const int* face) const {
 
 FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal) {
   FaceLattice L;
-  for (const auto& s : maximal) L.dimension = std::max(L.dimension, static_cast<int>(s.size()) - 1);
+  for (const auto& s : maximal) {
+    if (s.size() > static_cast<std::size_t>(kMaxLatticeVertices))
+      throw std::invalid_argument("face_lattice: a simplex with " + std::to_string(s.size()) + " vertices (at most " +
+                                  std::to_string(kMaxLatticeVertices) + ")");
+    L.dimension = std::max(L.dimension, static_cast<int>(s.size()) - 1);
+  }
   L.flat.assign(std::max(0, L.dimension + 1), {});
   for (const auto& s0 : maximal) {
     std::vector<int> s = s0;

@@ -23,6 +23,11 @@ struct FaceLattice {
   long find(int k, const int* face) const;
 };
 
+// A simplex with n vertices has 2^n - 1 faces: the lattice is built only for simplices of at most
+// kMaxLatticeVertices vertices (far above m + 1 <= 7; also keeps every `1u << n` defined) and
+// throws std::invalid_argument beyond. Callers drop larger simplices first (certify.cpp refutes
+// them as simplices of the wrong dimension; analyse_topology skips the lattice for them).
+inline constexpr int kMaxLatticeVertices = 16;
 FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal_simplices);
 
 // Ranks of the boundary maps over Z/p (p prime, small): rank[k] = rank of d_k: C_k -> C_{k-1}

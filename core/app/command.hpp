@@ -28,6 +28,11 @@ std::string manifold_option_help();
 // naming `path`.
 void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path);
 
+// The same check for points the producer sampled itself (delcert sample, refine without --points):
+// a failure means the spec's parametrization (or projection) disagrees with its equations.
+// Throws io::InputError naming the spec; the caller has written nothing yet.
+void check_sample_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& spec_path);
+
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);
 Command add_refine_command(CLI::App& app);

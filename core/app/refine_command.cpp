@@ -21,11 +21,14 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/app/command.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/io/input_error.hpp"
 #include "core/io/points.hpp"
 #include "core/io/spec.hpp"
@@ -59,6 +62,16 @@ double rational_option(const std::string& name, const std::string& text, mpq_cla
 }
 
 int run_refine(const RefineArgs& a) {
+  // Every output checked before any work (DIR itself may be created at the end).
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec))
+      throw io::InputError(a.out, 0, "--out: exists and is not a directory; refine writes a directory of four files");
+    std::vector<std::string> outs;
+    for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"}) outs.push_back((fs::path(a.out) / f).string());
+    for (const auto& o : outs) io::check_output_path(o, "--out", {a.manifold, a.points}, {}, true);
+  }
   Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
@@ -111,6 +124,7 @@ int run_refine(const RefineArgs& a) {
     eo.eps = params.eps;
     eo.seed = a.seed;
     auto net = eps_net(manifold, eo);
+    check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
     input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + a.eps + " --seed " + std::to_string(a.seed) + ")";
   }

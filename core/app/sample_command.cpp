@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "core/app/command.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/sampling.hpp"
@@ -22,7 +23,9 @@ int run_sample(const SampleArgs& a) {
   EpsNetOptions options;
   options.eps = a.eps;
   options.seed = a.seed;
+  io::check_output_path(a.out, "--out", {a.manifold});
   auto net = eps_net(manifold, options);
+  check_sample_on_manifold(manifold, net.points, a.manifold);
   io::write_points(a.out, net.points);
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), manifold.intrinsic_dimension(),
               manifold.ambient_dimension());

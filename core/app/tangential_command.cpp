@@ -12,6 +12,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/app/command.hpp"
 #include "core/io/atomic_file.hpp"
@@ -52,6 +54,10 @@ class Stopwatch {
 int run_tangential(const TangentialArgs& a) {
   Stopwatch clock;
   nlohmann::ordered_json times;
+  // Every output path is checked before any work, and every output is written at the end, all
+  // or nothing: a bad --stats must not leave a fresh --out behind.
+  io::check_output_path(a.out, "--out", {a.manifold, a.points}, {a.stats});
+  if (!a.stats.empty()) io::check_output_path(a.stats, "--stats", {a.manifold, a.points}, {a.out});
   Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
@@ -102,8 +108,8 @@ int run_tangential(const TangentialArgs& a) {
   tangential::ComplexTopology topology = tangential::analyze_complex(assembly.complex);
   times["analyze"] = clock.lap();
 
-  io::write_complex(a.out, assembly.complex);
-  times["write_complex"] = clock.lap();
+  std::vector<std::pair<std::string, std::string>> outputs{{a.out, io::format_complex(assembly.complex)}};
+  times["write_complex"] = clock.lap();  // formatting; the files are written together below
 
   const double max_radius = std::sqrt(star_stats.max_radius2);
   const bool consistent = assembly.inconsistent.empty();
@@ -139,8 +145,9 @@ int run_tangential(const TangentialArgs& a) {
     j["max_radius"] = max_radius;
     times["write_stats"] = clock.lap();
     j["time_seconds"] = times;
-    io::write_file_atomically(a.stats, j.dump(2) + "\n");
+    outputs.emplace_back(a.stats, j.dump(2) + "\n");
   }
+  io::write_files_atomically(outputs);
 
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), m, N);
   std::printf("points             %zu\n", points.size());

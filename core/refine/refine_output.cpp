@@ -228,11 +228,12 @@ void write_refine_output(const std::string& dir, const RefineResult& result, con
   if (ec || !fs::is_directory(dir))
     throw io::InputError(dir, 0, "cannot create the output directory: " + (ec ? ec.message() : std::string("not a directory")));
   const fs::path d(dir);
-  io::write_points((d / "points.txt").string(), result.points);
-  io::write_complex((d / "complex.txt").string(), result.complex);
   ClaimsOutcome claims = make_claims(result, parameters, context.text);
-  io::write_file_atomically((d / "claims.json").string(), claims.json);
-  io::write_file_atomically((d / "report.json").string(), make_report(result, parameters, context, claims));
+  // All four or none (each first complete in a temporary file, then renamed).
+  io::write_files_atomically({{(d / "points.txt").string(), io::format_points(result.points)},
+                              {(d / "complex.txt").string(), io::format_complex(result.complex)},
+                              {(d / "claims.json").string(), claims.json},
+                              {(d / "report.json").string(), make_report(result, parameters, context, claims)}});
 }
 
 }  // namespace delcert::refine

@@ -1,4 +1,6 @@
 // End-to-end tests of the certifier on valid, broken and exactly degenerate inputs.
+#include <numeric>
+
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -150,6 +152,26 @@ TEST(Certify, BrokenComplexesAreRefutedWithWitnesses) {
   EXPECT_EQ(check(c, 3).verdict, Verdict::refuted);
   EXPECT_EQ(check(c, 3).witnesses[0]["kind"], "wrong_dimension");
   EXPECT_EQ(check(c, 8).verdict, Verdict::refuted);
+}
+
+// A 32-vertex simplex (2^32 faces; `1u << 32` is undefined): refuted at once by check 3 with the
+// simplex itself as the witness, and no global check enumerates its faces.
+TEST(Certify, OversizedSimplexIsRefutedWithoutEnumeratingFaces) {
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  o.points = fixture("soundness/hang/fib40.txt");
+  o.complex = fixture("soundness/hang/complex-32simplex.txt");
+  Certificate c = run_certify(o);
+  EXPECT_EQ(c.overall(), Verdict::refuted);
+  const CheckEntry& stars = check(c, 3);
+  EXPECT_EQ(stars.verdict, Verdict::refuted);
+  std::vector<int> all(32);
+  std::iota(all.begin(), all.end(), 0);
+  bool named = false;
+  for (const auto& w : stars.witnesses)
+    named = named || (w["kind"] == "wrong_dimension" && w["simplex"] == all && w["dimension"] == 31);
+  EXPECT_TRUE(named) << stars.witnesses.dump();
+  EXPECT_EQ(check(c, 8).verdict, Verdict::refuted);  // not pure
 }
 
 TEST(Certify, ExactlyDegenerateInputIsNeverCertified) {

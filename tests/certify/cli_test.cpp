@@ -1,5 +1,6 @@
 // The delcert-certify binary: exit statuses, the final verdict line, atomic --out, and every
 // malformed input refused with exit status 2 and "file:line".
+#include <fstream>
 #include <regex>
 
 #include "support.hpp"
@@ -44,6 +45,32 @@ TEST(Cli, VerdictLineExitStatusAndCertificate) {
   run(binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --no-times --threads 3 --out " + q(b), dir);
   EXPECT_EQ(read_text(a), read_text(b));
   EXPECT_FALSE(read_text(a).empty());
+}
+
+// --out may not be (the same file as) any input, whatever its spelling: exit 2, input untouched.
+TEST(Cli, OutputMayNotOverwriteAnInput) {
+  TempDir dir("cli-out-input");
+  const std::string pts = dir.file("oct.off");
+  {
+    std::ofstream f(pts, std::ios::binary);
+    f << read_text(fixture("points/octahedron.off"));
+  }
+  const std::string complex = dir.file("oct.complex");
+  {
+    std::ofstream f(complex, std::ios::binary);
+    f << read_text(fixture("certify/octahedron.complex"));
+  }
+  const std::string before = read_text(pts), before_complex = read_text(complex);
+  const std::string base = binary() + " --manifold builtin:sphere-2 --points " + q(pts) + " --complex " + q(complex);
+  for (const std::string& out : {(dir.path / "." / "oct.off").string(), (dir.path / ".." / dir.path.filename() / "oct.complex").string()}) {
+    RunResult r = run(base + " --out " + q(out), dir);
+    EXPECT_EQ(r.exit_code, 2) << out << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("is the input file"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(read_text(pts), before);
+  EXPECT_EQ(read_text(complex), before_complex);
+  // A fresh path is fine.
+  EXPECT_EQ(run(base + " --no-times --out " + q(dir.file("cert.json")), dir).exit_code, 0);
 }
 
 TEST(Cli, UsageErrorsExit2) {

@@ -1,6 +1,12 @@
 // The grid's sufficiency guarantee: every point of the closed ball is a candidate.
 #include <gtest/gtest.h>
 
+#include <gmpxx.h>
+
+#include <cfenv>
+#include <cfloat>
+
+#include "exact/interval.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -34,6 +40,162 @@ TEST(PointGrid, CandidatesContainEveryPointOfTheBall) {
     }
     EXPECT_EQ(grid.candidates(P.point(0), grid.diameter()).size(), P.size());
   }
+}
+
+
+// Exact (rational) tests: |q_k - c_k| <= r for every k, and |q - c|^2 <= r^2.
+mpq_class q_of(double x) { return mpq_class(x); }
+bool in_box_exact(std::span<const double> q, std::span<const double> c, double r) {
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    mpq_class d = q_of(q[k]) - q_of(c[k]);
+    if (abs(d) > q_of(r)) return false;
+  }
+  return true;
+}
+bool in_ball_exact(std::span<const double> q, std::span<const double> c, double r) {
+  mpq_class s = 0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    mpq_class d = q_of(q[k]) - q_of(c[k]);
+    s += d * d;
+  }
+  return s <= q_of(r) * q_of(r);
+}
+
+// Every point of the exact box (resp. ball) is returned, whatever the rounding mode of the query.
+void expect_superset(const io::PointSet& P, const PointGrid& grid, std::span<const double> c, double r) {
+  for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+    std::vector<int> cand, ball;
+    {
+      const int saved = std::fegetround();
+      std::fesetround(mode);
+      cand = grid.candidates(c, r);
+      ball = grid.ball(c, r);
+      std::fesetround(saved);
+    }
+    ASSERT_TRUE(std::is_sorted(cand.begin(), cand.end()));
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (in_box_exact(P.point(i), c, r)) {
+        EXPECT_TRUE(std::binary_search(cand.begin(), cand.end(), static_cast<int>(i)))
+            << "point " << i << " (" << P.point(i)[0] << ", ...) missed, r = " << r << ", mode " << mode;
+      }
+      if (in_ball_exact(P.point(i), c, r)) {
+        EXPECT_TRUE(std::binary_search(ball.begin(), ball.end(), static_cast<int>(i)))
+            << "point " << i << " missed by ball, r = " << r << ", mode " << mode;
+      }
+    }
+  }
+}
+
+// Queries centred at points, between points and far away, with radii equal to coordinate
+// differences (the box boundary falls exactly on a point) and their neighbours.
+void adversarial_queries(const io::PointSet& P, const PointGrid& grid, Rng& rng, int count) {
+  const int N = P.dimension;
+  for (int q = 0; q < count; ++q) {
+    std::size_t a = rng.next() % P.size(), b = rng.next() % P.size();
+    std::vector<double> c(P.point(a).begin(), P.point(a).end());
+    if (q % 4 == 1)
+      for (int k = 0; k < N; ++k) c[k] = P.point(a)[k] / 2 + P.point(b)[k] / 2;
+    int k = static_cast<int>(rng.next() % N);
+    double r = std::abs(P.point(b)[k] - c[k]);  // rounded: sometimes just below the exact difference
+    if (q % 3 == 1) r = std::nextafter(r, 0.0);
+    if (q % 3 == 2) r = std::nextafter(r, INFINITY);
+    if (q % 17 == 0) r = 0;
+    if (std::isinf(r)) r = DBL_MAX;
+    expect_superset(P, grid, c, r);
+  }
+}
+
+io::PointSet scaled_cloud(Rng& rng, int n, int N, double scale) {
+  io::PointSet P;
+  P.dimension = N;
+  for (int i = 0; i < n; ++i) {
+    std::vector<double> x(N);
+    for (auto& v : x) v = (rng.uniform() * 2 - 1) * scale;
+    if (i % 7 == 0) x[0] = -x[0];
+    P.push_back(x);
+  }
+  return P;
+}
+
+TEST(PointGrid, SupersetAtAdversarialMagnitudes) {
+  Rng rng(2024);
+  for (double scale : {1e-310, 4e-323, 1e-300, 1.0, 1e300, 1e308, DBL_MAX}) {
+    for (int N : {2, 3, 5}) {
+      io::PointSet P = scaled_cloud(rng, 60, N, scale);
+      for (double hint : {0.0, scale * 1e-9, scale})
+        for (int m : {1, 2}) {
+          PointGrid grid(P, m, hint);
+          EXPECT_GT(grid.spacing(), 0);
+          EXPECT_LE(grid.diameter(), DBL_MAX);
+          adversarial_queries(P, grid, rng, 12);
+          EXPECT_EQ(grid.candidates(P.point(0), INFINITY).size(), P.size());
+        }
+    }
+  }
+}
+
+TEST(PointGrid, SupersetWithMixedMagnitudes) {
+  Rng rng(99);
+  for (int N : {2, 3, 4}) {
+    io::PointSet P;
+    P.dimension = N;
+    const double scales[] = {5e-324, 1e-310, 1e-300, 1, 1e300, 1e308, -DBL_MAX, DBL_MAX};
+    for (int i = 0; i < 80; ++i) {
+      std::vector<double> x(N);
+      for (auto& v : x) v = (rng.uniform() * 2 - 1) * scales[rng.next() % 8];
+      P.push_back(x);
+    }
+    for (double hint : {0.0, 1e-320, 1e-300, 1.0}) {
+      PointGrid grid(P, 2, hint);
+      adversarial_queries(P, grid, rng, 30);
+    }
+  }
+}
+
+// A small hint over a huge extent: the old int64 key ((i0 d1) + i1) d2 + i2 needed about 2^90
+// cells and wrapped; cells per axis and their product are now bounded and every query is exact.
+TEST(PointGrid, HugeExtentsDoNotOverflowCellKeys) {
+  Rng rng(5);
+  for (double far : {1.0, 1e10, 1e300, DBL_MAX}) {
+    io::PointSet P;
+    P.dimension = 3;
+    for (int i = 0; i < 40; ++i) P.push_back(std::vector<double>{rng.uniform() * 1e-3, rng.uniform() * 1e-3, rng.uniform() * 1e-3});
+    P.push_back(std::vector<double>{far, far, far});
+    P.push_back(std::vector<double>{-far, -far, -far});
+    P.push_back(std::vector<double>{far, -far, far});
+    for (double hint : {1e-300, 1e-12, 1e-6})
+      for (int m : {1, 3}) {
+        PointGrid grid(P, m, hint);
+        adversarial_queries(P, grid, rng, 40);
+        // Small radii around the cluster: the scan-every-occupied-cell path and the odometer.
+        for (double r : {1e-4, 1e-3, 1e3}) expect_superset(P, grid, P.point(rng.next() % 40), r);
+      }
+  }
+}
+
+// The soundness fixture: four points with subnormal coordinates (the old cell size was 0).
+TEST(PointGrid, SubnormalPoints) {
+  io::PointSet P;
+  P.dimension = 3;
+  P.push_back(std::vector<double>{0, 0, 0});
+  P.push_back(std::vector<double>{5e-324, 0, 0});
+  P.push_back(std::vector<double>{0, 5e-324, 0});
+  P.push_back(std::vector<double>{5e-324, 5e-324, 0});
+  for (int m : {1, 2, 3}) {
+    PointGrid grid(P, m);
+    EXPECT_GT(grid.spacing(), 0);
+    EXPECT_GE(grid.diameter(), 5e-324);
+    for (std::size_t i = 0; i < P.size(); ++i)
+      for (double r : {0.0, 5e-324, 1e-323, 1.0}) expect_superset(P, grid, P.point(i), r);
+    EXPECT_EQ(grid.candidates(P.point(0), 5e-324).size(), P.size());
+  }
+}
+
+TEST(PointGrid, NanRadiusReturnsEveryPoint) {
+  Rng rng(1);
+  io::PointSet P = scaled_cloud(rng, 20, 2, 1);
+  PointGrid grid(P, 1);
+  EXPECT_EQ(grid.candidates(P.point(0), NAN).size(), P.size());
 }
 
 }  // namespace

@@ -54,7 +54,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"--manifold @FIX@does-not-exist.json --eps 0.3", "cannot open file"},
                       BadRun{"--manifold builtin:sphere-2 --eps -1", "--eps"},
                       BadRun{"--manifold builtin:sphere-2 --eps abc", "--eps"},
-                      BadRun{"--eps 0.3", "--manifold is required"}));
+                      BadRun{"--eps 0.3", "--manifold is required"},
+                      // x^2 + y^2 + z^2 = 4 sampled with a unit-sphere parametrization: |F| = 3.
+                      BadRun{"--manifold @FIX@bad/spec-parametrization-mismatch.json --eps 0.5",
+                             "the spec's parametrization does not satisfy its equations"}));
 
 TEST(SampleCommand, UnwritableOutputIsBadInput) {
   auto r = run(binary("delcert") + " sample --manifold builtin:sphere-2 --eps 0.5 --out /nonexistent-dir/x.txt");

@@ -57,7 +57,15 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"complex-duplicate-simplex.txt", 4, "simplex listed twice (first on line 3)"},
                       BadCase{"complex-negative-index.txt", 3, "expected a vertex index"},
                       BadCase{"complex-unknown-version.txt", 1, "unsupported complex format version"},
-                      BadCase{"complex-off-quad.off", 7, "face has 4 vertices"}));
+                      BadCase{"complex-off-quad.off", 7, "face has 4 vertices"},
+                      BadCase{"complex-66-vertices.txt", 4, "a simplex with 66 vertices; at most 65"}));
+
+// The largest simplex the reader accepts: 65 vertices (ambient dimension 64 + 1).
+TEST(Complex, SimplexSizeLimit) {
+  std::string text = "delcert-complex v1\n65 1\n";
+  for (int i = 0; i < 65; ++i) text += std::to_string(i) + (i < 64 ? " " : "\n");
+  EXPECT_EQ(parse_complex(text, "mem").complex.simplices.at(0).size(), kMaxSimplexVertices);
+}
 
 }  // namespace
 }  // namespace delcert::io
