@@ -135,7 +135,9 @@ void NeighbourIndex::nearest(std::span<const double> q, std::size_t k, std::vect
     self(self, near, rd);
     const double old = s.off[nd.dim];
     const double nrd = rd - old * old + diff * diff;
-    if (nrd <= s.threshold() * kPruneSlack) {
+    // Written as !(a > b): near 1e308 the incremental bound can be inf - inf = NaN, and a NaN must
+    // visit the far side rather than silently prune it.
+    if (!(nrd > s.threshold() * kPruneSlack)) {
       s.off[nd.dim] = diff;
       self(self, far, nrd);
       s.off[nd.dim] = old;
@@ -175,7 +177,7 @@ void NeighbourIndex::ball(std::span<const double> q, double r2, std::vector<Item
     self(self, near, rd);
     const double old = off[nd.dim];
     const double nrd = rd - old * old + diff * diff;
-    if (nrd <= r2 * kPruneSlack) {
+    if (!(nrd > r2 * kPruneSlack)) {  // NaN visits (see nearest())
       off[nd.dim] = diff;
       self(self, far, nrd);
       off[nd.dim] = old;
