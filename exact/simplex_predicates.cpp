@@ -41,7 +41,13 @@ IA interval_max(const IA& a, const IA& b) { return IA(std::max(a.inf(), b.inf())
 //   T in [(s - N eta) / (1 + g), (s + N eta) / (1 - g)]  within  (s + [-N eta, N eta]) * [1 - 2c, 1 + 2c].
 // The bounds are computed with upward rounding. Reordering or fusing the floating-point
 // operations only removes rounding factors, so the bound holds for any evaluation order.
-// Overflow (s = inf) falls back to plain interval arithmetic. We use 2^-1000 >= N eta below.
+// Overflow, under the upward rounding the caller holds: a difference that overflows is +inf or
+// -DBL_MAX, and either squares to +inf (DBL_MAX^2 rounds up to +inf); a square or a sum of
+// non-negative terms that overflows rounds up to +inf. So a finite s proves that nothing
+// overflowed. (Downward or toward-zero rounding would turn overflows into DBL_MAX: the bound
+// needs the upward mode, asserted below.) s = inf falls back to plain interval arithmetic.
+// (Contrast the signed dot products of tangent_predicates.cpp, where a finite result does NOT
+// prove the absence of overflow.) We use 2^-1000 >= N eta below.
 IA interval_squared_distance(const double* a, const double* b, int N) {
   double s = 0;
   for (int i = 0; i < N; ++i) {
