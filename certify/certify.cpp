@@ -133,10 +133,10 @@ Certificate run_certify(const CertifyOptions& o) {
   const int threads = std::max(1, o.threads);
 
   // ---- Inputs ------------------------------------------------------------------------------
-  io::ManifoldSpec spec = io::read_spec(o.manifold);
+  // Each input is read once: the bytes parsed are the bytes hashed into the certificate.
+  const std::string spec_text = io::read_spec_text(o.manifold);
+  io::ManifoldSpec spec = io::parse_spec(spec_text, o.manifold);
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
-  std::string spec_text = o.manifold.rfind("builtin:", 0) == 0 ? io::builtin_spec_text(o.manifold.substr(8))
-                                                                : io::read_file(o.manifold);
   if (m > exact::kMaxTangentDimension)
     throw io::InputError(o.manifold, 0, "intrinsic dimension " + std::to_string(m) + " is above the supported maximum " +
                                             std::to_string(exact::kMaxTangentDimension));

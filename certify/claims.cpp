@@ -2,44 +2,28 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
-
 #include "core/io/atomic_file.hpp"
 #include "core/io/input_error.hpp"
+#include "core/io/strict_json.hpp"
 #include "exact/polynomial.hpp"
 
 namespace delcert::certify {
 
-namespace {
-
-// 1-based line of the first occurrence of "key" in the text (0 if absent): JSON parsers do not
-// keep positions, and a message that names the line is what lets a user fix the file.
-long line_of_key(const std::string& text, const std::string& key) {
-  auto pos = text.find("\"" + key + "\"");
-  if (pos == std::string::npos) return 0;
-  return 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-}  // namespace
-
 Claims parse_claims(const std::string& text, const std::string& file) {
   using nlohmann::json;
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(std::min(e.byte, text.size())), '\n'));
-    throw io::InputError(file, line, std::string("invalid JSON: ") + e.what());
-  }
+  // Strict: a repeated key is refused (a DOM keeps the last one silently), every number is read
+  // as written, and every message names the line.
+  const io::StrictJson doc = io::StrictJson::parse(text, file);
+  const json& j = doc.root();
   if (!j.is_object()) throw io::InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v1\", ...}");
-  if (!j.contains("format") || j["format"] != "delcert-claims v1")
-    throw io::InputError(file, std::max(1L, line_of_key(text, "format")),
+  if (!j.contains("format") || j.at("format") != "delcert-claims v1")
+    throw io::InputError(file, doc.line("format"),
                          "expected \"format\": \"delcert-claims v1\"; this reader knows version 1 only");
   Claims c;
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     if (key == "format") continue;
-    long line = line_of_key(text, key);
+    const long line = doc.key_line(key);
     std::optional<mpq_class>* slot = key == "eps"                ? &c.eps
                                      : key == "sparsity"         ? &c.sparsity
                                      : key == "gamma0"           ? &c.gamma0
@@ -50,8 +34,8 @@ Claims parse_claims(const std::string& text, const std::string& file) {
     const json& v = it.value();
     if (v.is_null()) continue;
     mpq_class q;
-    if (v.is_number_integer()) {
-      q = mpq_class(std::to_string(v.get<long long>()));
+    if (auto z = v.is_number() ? doc.integer(key) : std::nullopt) {
+      q = mpq_class(*z);  // a JSON integer, exactly as written, of any size
     } else if (v.is_string()) {
       try {
         q = parse_rational(v.get<std::string>());
@@ -60,8 +44,8 @@ Claims parse_claims(const std::string& text, const std::string& file) {
       }
     } else {
       throw io::InputError(file, line,
-                           "claim '" + key + "' must be an exact rational written as a string, e.g. \"0.05\" or \"1/20\"; found " +
-                               v.dump());
+                           "claim '" + key + "' must be an exact rational written as a string, e.g. \"0.05\" or \"1/20\", "
+                           "or a JSON integer; found " + (doc.number_text(key) ? *doc.number_text(key) : v.dump()));
     }
     if (q < 0 || (key == "eps" && q == 0))
       throw io::InputError(file, line, "claim '" + key + "' must be " + (key == "eps" ? "positive" : "non-negative"));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <unordered_map>
 #include <sstream>
 
 namespace delcert {
@@ -14,6 +15,9 @@ mpq_class parse_rational(std::string_view text) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
   if (s.empty()) fail();
   if (auto slash = s.find('/'); slash != std::string::npos) {
+    if (s.find('/', slash + 1) != std::string::npos)  // "1/2/3": (1/2)/3 or 1/(2/3)?
+      throw std::invalid_argument("not a rational number: '" + std::string(text) +
+                                  "' has more than one '/'; write one fraction such as \"1/6\"");
     mpq_class num = parse_rational(s.substr(0, slash));
     mpq_class den = parse_rational(s.substr(slash + 1));
     if (den == 0) throw std::invalid_argument("zero denominator in '" + s + "'");
@@ -88,13 +92,54 @@ std::string rational_to_string(const mpq_class& value) {
 
 namespace {
 
+using Limits = PolynomialLimits;
+
+// Largest bit size (numerator + denominator) of a coefficient.
+std::size_t coefficient_bits(const Polynomial& p) {
+  std::size_t b = 0;
+  for (const auto& t : p.terms())
+    b = std::max(b, mpz_sizeinbase(t.coefficient.get_num_mpz_t(), 2) + mpz_sizeinbase(t.coefficient.get_den_mpz_t(), 2));
+  return b;
+}
+
+// Number of monomials of total degree <= d in n variables, C(n + d, n), saturated at cap + 1.
+std::size_t monomials_up_to(int n, int d, std::size_t cap) {
+  // C(d + k, k) for k = 1..n, each step exact: C(d+k, k) = C(d+k-1, k-1) * (d+k) / k. The
+  // intermediate product stays below (cap + 1) * (d + n) <= 10^4 * 400, far from overflow.
+  unsigned long long c = 1;
+  for (int k = 1; k <= n; ++k) {
+    c = c * static_cast<unsigned long long>(d + k) / static_cast<unsigned long long>(k);
+    if (c > cap) return cap + 1;
+  }
+  return static_cast<std::size_t>(c);
+}
+
+// An upper bound on the number of terms of p^k for p with t terms and degree d over n variables:
+// the products of k of the t terms (multisets: C(t + k - 1, k)) and the monomials of degree
+// <= k d, whichever is smaller; saturated at cap + 1.
+std::size_t power_terms_bound(std::size_t t, int d, int n, int k, std::size_t cap) {
+  if (k == 0) return 1;
+  if (t == 0) return 0;
+  // C(t - 1 + k, j) for j = 1..min(k, t - 1), exact as above; t <= cap + 1 and k <= 256.
+  const unsigned long long top = t - 1 + static_cast<unsigned long long>(k);
+  const unsigned long long steps = std::min<unsigned long long>(static_cast<unsigned long long>(k), t - 1);
+  unsigned long long c = 1;
+  for (unsigned long long j = 1; j <= steps && c <= cap; ++j) c = c * (top - steps + j) / j;
+  return std::min<std::size_t>(std::min<unsigned long long>(c, cap + 1), monomials_up_to(n, k * d, cap));
+}
+
 // Recursive-descent parser:  expr := term (('+'|'-') term)* ; term := unary (('*'|'/') unary)* ;
 // unary := ('+'|'-') unary | power ; power := atom ('^' integer)? ; atom := number | x<i> | '(' expr ')'
+// Every operation is checked against PolynomialLimits before it is carried out.
 class Parser {
  public:
   Parser(std::string_view s, int n) : s_(s), n_(n) {}
 
   Polynomial parse_all() {
+    if (s_.size() > Limits::max_text_length)
+      throw PolynomialParseError("polynomial too large: " + std::to_string(s_.size()) + " characters (the limit is " +
+                                     std::to_string(Limits::max_text_length) + ")",
+                                 0);
     skip();
     if (pos_ >= s_.size()) throw PolynomialParseError("empty expression", pos_);
     Polynomial p = expr();
@@ -116,44 +161,161 @@ class Parser {
     }
     return false;
   }
+  // Parentheses and unary signs recurse; deeper nesting than the limit is refused before the
+  // stack can overflow.
+  struct Nest {
+    Parser& p;
+    Nest(Parser& parser, std::size_t at) : p(parser) {
+      if (++p.depth_ > Limits::max_nesting)
+        throw PolynomialParseError("polynomial too deeply nested: more than " + std::to_string(Limits::max_nesting) +
+                                       " levels of parentheses and signs (the limit)",
+                                   at);
+    }
+    ~Nest() { --p.depth_; }
+  };
+  void check_size(const Polynomial& p, std::size_t at) const {
+    if (p.terms().size() > Limits::max_terms)
+      throw PolynomialParseError("polynomial too large: " + std::to_string(p.terms().size()) +
+                                     " terms (the limit is " + std::to_string(Limits::max_terms) + ")",
+                                 at);
+    if (std::size_t b = coefficient_bits(p); b > Limits::max_coefficient_bits)
+      throw PolynomialParseError("polynomial too large: a coefficient of " + std::to_string(b) +
+                                     " bits (the limit is " + std::to_string(Limits::max_coefficient_bits) + ")",
+                                 at);
+  }
+  [[noreturn]] void too_many_products(std::size_t more, std::size_t at) const {
+    throw PolynomialParseError("polynomial too large: expanding it takes more than " +
+                                   std::to_string(Limits::max_products) + " term products (the limit; " +
+                                   std::to_string(products_ + more) + " needed so far)",
+                               at);
+  }
+  [[noreturn]] void too_many_terms(std::size_t bound, std::size_t at) const {
+    throw PolynomialParseError("polynomial too large: a sub-expression may have " +
+                                   (bound > Limits::max_terms ? "more than " + std::to_string(Limits::max_terms)
+                                                              : std::to_string(bound)) +
+                                   " terms (the limit is " + std::to_string(Limits::max_terms) + " terms)",
+                               at);
+  }
+  // a * b, refused before it is computed if the result could exceed a limit.
+  // `known_bound`: a bound on the result's terms the caller knows (power_of's).
+  Polynomial multiply(const Polynomial& a, const Polynomial& b, std::size_t at,
+                      std::size_t known_bound = static_cast<std::size_t>(-1)) {
+    const int d = a.degree() + b.degree();
+    if (d > Limits::max_degree)
+      throw PolynomialParseError("polynomial too large: a product of degree " + std::to_string(d) +
+                                     " (the limit on the total degree is " + std::to_string(Limits::max_degree) + ")",
+                                 at);
+    const std::size_t na = a.terms().size(), nb = b.terms().size();  // each <= max_terms: no overflow
+    const std::size_t bits = coefficient_bits(a) + coefficient_bits(b);
+    // Cost of the products: large coefficients multiply more slowly (the weight keeps the whole
+    // expansion near a second); na * nb * weight <= 10^8 * 20 fits easily.
+    const std::size_t cost = na * nb * (1 + bits / 2048);
+    if (products_ + cost > Limits::max_products) too_many_products(cost, at);
+    if (std::size_t bound = std::min({na * nb, monomials_up_to(n_, d, Limits::max_terms), known_bound});
+        bound > Limits::max_terms)
+      too_many_terms(bound, at);
+    if (bits > Limits::max_coefficient_bits)
+      throw PolynomialParseError("polynomial too large: a product with coefficients of more than " +
+                                     std::to_string(Limits::max_coefficient_bits) + " bits (the limit)",
+                                 at);
+    products_ += cost;
+    Polynomial r = a * b;
+    check_size(r, at);
+    return r;
+  }
+  // base^e by square-and-multiply. The whole schedule is bounded first (terms of every
+  // intermediate power by power_terms_bound, products by their sum), so that a power beyond the
+  // limits is refused before any of it is computed; each product is then checked again.
+  Polynomial power_of(Polynomial base, int e, std::size_t at) {
+    const std::size_t t = base.terms().size();
+    const int d = base.degree();
+    auto bound = [&](int k) { return power_terms_bound(t, d, n_, k, Limits::max_terms); };
+    if (std::size_t b = bound(e); b > Limits::max_terms) too_many_terms(b, at);
+    std::size_t planned = 0;
+    for (int k = e, have = 0, sq = 1; k; sq *= 2) {
+      if (k & 1) planned += bound(have) * bound(sq), have += sq;
+      k >>= 1;
+      if (k) planned += bound(sq) * bound(sq);
+      if (products_ + planned > Limits::max_products) too_many_products(planned, at);
+    }
+    Polynomial result = Polynomial::constant(mpq_class(1), n_);
+    for (int k = e, have = 0, sq = 1; k; sq *= 2) {
+      if (k & 1) result = multiply(result, base, at, bound(have + sq)), have += sq;
+      k >>= 1;
+      if (k) base = multiply(base, base, at, bound(2 * sq));
+    }
+    return result;
+  }
   Polynomial expr() {
     Polynomial p = term();
     for (;;) {
+      skip();
+      std::size_t at = pos_;
       if (accept('+')) p = p + term();
       else if (accept('-')) p = p - term();
       else return p;
+      check_size(p, at);
     }
   }
   Polynomial term() {
     Polynomial p = unary();
+    bool after_division = false;
     for (;;) {
+      skip();
+      std::size_t at = pos_;
       if (accept('*')) {
-        p = p * unary();
+        p = multiply(p, unary(), at);
+        after_division = false;
       } else {
-        skip();
-        std::size_t at = pos_;
         if (!accept('/')) return p;
+        if (after_division)
+          throw PolynomialParseError("ambiguous division a/b/c: write (a/b)/c or a/(b/c)", at);
         Polynomial d = unary();
         if (!d.is_constant()) throw PolynomialParseError("division by a non-constant expression", at);
         if (d.is_zero()) throw PolynomialParseError("division by zero", at);
         p = p.scaled(1 / d.terms()[0].coefficient);
+        check_size(p, at);
+        after_division = true;
       }
     }
   }
   Polynomial unary() {
-    if (accept('-')) return -unary();
-    if (accept('+')) return unary();
+    skip();
+    const std::size_t at = pos_;
+    if (accept('-')) {
+      Nest nest(*this, at);
+      return -unary();
+    }
+    if (accept('+')) {
+      Nest nest(*this, at);
+      return unary();
+    }
     return power();
   }
   Polynomial power() {
     Polynomial base = atom();
+    skip();
+    const std::size_t at = pos_;
     if (accept('^')) {
       skip();
       std::size_t start = pos_;
       while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
       if (start == pos_) throw PolynomialParseError("exponent must be a non-negative integer literal", start);
-      if (pos_ - start > 4) throw PolynomialParseError("exponent too large", start);
-      base = base.pow(static_cast<unsigned>(std::stoul(std::string(s_.substr(start, pos_ - start)))));
+      // Compare the digit string with the limit without converting it (it may be any length).
+      std::string_view digits = s_.substr(start, pos_ - start);
+      while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
+      const std::string limit = std::to_string(Limits::max_degree);
+      if (digits.size() > limit.size() || (digits.size() == limit.size() && digits > limit))
+        throw PolynomialParseError("exponent " + std::string(digits.substr(0, 20)) + (digits.size() > 20 ? "..." : "") +
+                                       " too large (the limit on exponents and on the total degree is " + limit + ")",
+                                   start);
+      const int e = std::stoi(std::string(digits));
+      if (static_cast<long>(base.degree()) * e > Limits::max_degree)
+        throw PolynomialParseError("exponent " + std::to_string(e) + " too large: the power has degree " +
+                                       std::to_string(static_cast<long>(base.degree()) * e) +
+                                       " (the limit on the total degree is " + limit + ")",
+                                   start);
+      return power_of(std::move(base), e, at);
     }
     return base;
   }
@@ -162,6 +324,7 @@ class Parser {
     if (pos_ >= s_.size()) throw PolynomialParseError("unexpected end of expression", pos_);
     char c = s_[pos_];
     if (c == '(') {
+      Nest nest(*this, pos_);
       ++pos_;
       Polynomial p = expr();
       if (!accept(')')) throw PolynomialParseError("missing ')'", pos_);
@@ -172,9 +335,16 @@ class Parser {
       std::size_t dstart = pos_;
       while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
       if (dstart == pos_) throw PolynomialParseError("variable must be x1..x" + std::to_string(n_), start);
-      long idx = std::stol(std::string(s_.substr(dstart, std::min<std::size_t>(pos_ - dstart, 9))));
+      // The whole digit string is the index: no truncation, no leading zeros ("x03" is refused
+      // rather than guessed at).
+      std::string_view digits = s_.substr(dstart, pos_ - dstart);
+      std::string shown = std::string(digits.substr(0, 20)) + (digits.size() > 20 ? "..." : "");
+      if (digits.size() > 1 && digits.front() == '0')
+        throw PolynomialParseError("variable x" + shown + ": leading zeros are not allowed in a variable index", start);
+      long idx = digits.size() > 9 ? -1 : std::stol(std::string(digits));
       if (idx < 1 || idx > n_)
-        throw PolynomialParseError("variable x" + std::to_string(idx) + " out of range x1..x" + std::to_string(n_),
+        throw PolynomialParseError("variable x" + shown + " out of range x1..x" + std::to_string(n_) + " (N = " +
+                                       std::to_string(n_) + " coordinates)",
                                    start);
       return Polynomial::variable(static_cast<int>(idx - 1), n_);
     }
@@ -188,11 +358,18 @@ class Parser {
         while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
         if (ds == pos_) pos_ = save;  // not an exponent after all
       }
+      if (pos_ - start > Limits::max_literal_length)
+        throw PolynomialParseError("number literal too large: " + std::to_string(pos_ - start) +
+                                       " characters (the limit is " + std::to_string(Limits::max_literal_length) + ")",
+                                   start);
+      Polynomial p;
       try {
-        return Polynomial::constant(parse_rational(s_.substr(start, pos_ - start)), n_);
+        p = Polynomial::constant(parse_rational(s_.substr(start, pos_ - start)), n_);
       } catch (const std::invalid_argument&) {
         throw PolynomialParseError("malformed number '" + std::string(s_.substr(start, pos_ - start)) + "'", start);
       }
+      check_size(p, start);  // "1e99999" is short but large
+      return p;
     }
     throw PolynomialParseError(std::string("unexpected character '") + c + "'", pos_);
   }
@@ -200,6 +377,8 @@ class Parser {
   std::string_view s_;
   int n_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
+  std::size_t products_ = 0;  // term products spent so far, against Limits::max_products
 };
 
 }  // namespace
@@ -273,20 +452,61 @@ Polynomial Polynomial::scaled(const mpq_class& c) const {
 }
 
 Polynomial Polynomial::operator*(const Polynomial& o) const {
+  // Products are collected in a hash map by monomial: a product of |a| by |b| terms costs |a||b|
+  // lookups among the result's terms, not a sort of |a||b| terms.
   Polynomial r(std::max(num_vars_, o.num_vars_));
-  for (const auto& a : terms_)
-    for (const auto& b : o.terms_) {
-      Monomial m{std::vector<std::uint32_t>(r.num_vars_, 0)};
-      // Operands may have fewer variables than the result: missing exponents are 0.
-      for (std::size_t v = 0; v < a.monomial.exponents.size(); ++v) m.exponents[v] += a.monomial.exponents[v];
-      for (std::size_t v = 0; v < b.monomial.exponents.size(); ++v) m.exponents[v] += b.monomial.exponents[v];
-      r.terms_.push_back(Term{a.coefficient * b.coefficient, std::move(m)});
+  struct Hash {
+    std::size_t operator()(const Monomial& m) const {
+      std::size_t h = 0;
+      for (auto e : m.exponents) h = h * 0x9E3779B97F4A7C15ull + e;
+      return h;
     }
-  r.normalize();
+  };
+  // Each product of coefficients is a rational product unless both operands have a small common
+  // denominator (the usual case: integer coefficients), when it is an integer multiply-add into
+  // the numerator over the product of the two denominators, several times faster.
+  const IntegerForm fa = integer_form(), fb = o.integer_form();
+  const bool integer_path = mpz_sizeinbase(fa.denominator.get_mpz_t(), 2) + mpz_sizeinbase(fb.denominator.get_mpz_t(), 2) <= 1024;
+  std::unordered_map<Monomial, mpq_class, Hash> acc;
+  acc.reserve(std::min<std::size_t>(terms_.size() * o.terms_.size(), 1u << 16));
+  Monomial m{std::vector<std::uint32_t>(r.num_vars_, 0)};
+  mpq_class c;
+  for (std::size_t i = 0; i < terms_.size(); ++i) {
+    const Term& a = terms_[i];
+    for (std::size_t j = 0; j < o.terms_.size(); ++j) {
+      const Term& b = o.terms_[j];
+      // Operands may have fewer variables than the result: missing exponents are 0.
+      std::fill(m.exponents.begin(), m.exponents.end(), 0u);
+      for (std::size_t v = 0; v < a.monomial.exponents.size(); ++v) m.exponents[v] = a.monomial.exponents[v];
+      for (std::size_t v = 0; v < b.monomial.exponents.size(); ++v) {
+        if (m.exponents[v] > UINT32_MAX - b.monomial.exponents[v])
+          throw std::overflow_error("polynomial exponent above 2^32 - 1");  // never wrap
+        m.exponents[v] += b.monomial.exponents[v];
+      }
+      auto [it, fresh] = acc.try_emplace(m);
+      if (integer_path) {  // the numerator of the entry, denominator 1 until the end
+        mpz_addmul(mpq_numref(it->second.get_mpq_t()), fa.numerators[i].get_mpz_t(), fb.numerators[j].get_mpz_t());
+      } else {
+        mpq_mul(c.get_mpq_t(), a.coefficient.get_mpq_t(), b.coefficient.get_mpq_t());
+        it->second += c;
+      }
+    }
+  }
+  const mpz_class den = fa.denominator * fb.denominator;
+  r.terms_.reserve(acc.size());
+  for (auto& [mono, coef] : acc) {
+    if (integer_path) {
+      mpz_set(mpq_denref(coef.get_mpq_t()), den.get_mpz_t());
+      coef.canonicalize();
+    }
+    if (coef != 0) r.terms_.push_back(Term{std::move(coef), mono});
+  }
+  r.normalize();  // sorts; the monomials are already distinct
   return r;
 }
 
 Polynomial Polynomial::pow(unsigned e) const {
+  // Exponent overflow is caught by operator*.
   Polynomial result = constant(mpq_class(1), num_vars_);
   Polynomial base = *this;
   while (e) {

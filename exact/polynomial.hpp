@@ -29,9 +29,28 @@ struct PolynomialParseError : std::runtime_error {
   std::size_t offset;
 };
 
-// Parses a rational literal: integer ("-3"), decimal ("0.125", "1e-3", "2.5E+2") or fraction ("1/3").
-// Throws std::invalid_argument on anything else.
+// Parses a rational literal: integer ("-3"), decimal ("0.125", "1e-3", "2.5E+2") or fraction
+// ("1/3", "-0.5/3": two such decimals separated by ONE slash; "1/2/3" is refused, it has no one
+// obvious meaning). Decimal exponents are limited to |e| <= 100000. Surrounding blanks are ignored.
+// Throws std::invalid_argument ("not a rational number: ...") on anything else.
 mpq_class parse_rational(std::string_view text);
+
+// Limits of Polynomial::parse. A polynomial beyond them is refused with a PolynomialParseError
+// whose message contains "too large" (or "too deeply nested") and names the limit; every check
+// is made BEFORE the expensive operation, so a refusal costs well under a second. They are far
+// above what a manifold spec needs (the built-in specs have degree <= 4 and <= 30 terms).
+struct PolynomialLimits {
+  static constexpr std::size_t max_text_length = 100000;     // characters of the whole expression
+  static constexpr std::size_t max_literal_length = 1000;    // characters of one number literal
+  static constexpr int max_degree = 256;                     // total degree of every sub-expression;
+                                                             // also the largest exponent after '^'
+  static constexpr std::size_t max_terms = 10000;            // terms of every sub-expression
+  static constexpr std::size_t max_products = 1000000;       // term products in the whole expansion,
+                                                             // each counted 1 + (bits of the two
+                                                             // coefficients) / 2048 times
+  static constexpr std::size_t max_coefficient_bits = 20000;  // bits of numerator + denominator
+  static constexpr int max_nesting = 200;                    // parentheses and unary signs
+};
 
 // Exact decimal string of a rational if it has a finite decimal expansion, else "p/q".
 std::string rational_to_string(const mpq_class& q);
@@ -52,7 +71,10 @@ class Polynomial {
   explicit Polynomial(int num_variables) : num_vars_(num_variables) {}
 
   // Parses `text` over the variables x1..x{num_variables}. Division is allowed only by a
-  // non-zero constant sub-expression; exponents are non-negative integer literals.
+  // non-zero constant sub-expression, and not twice in a row ("a/b/c" is refused as ambiguous:
+  // write "(a/b)/c"); exponents are non-negative integer literals. A variable is 'x' followed by
+  // its index in 1..num_variables written without leading zeros ("x07" is refused). Enforces
+  // PolynomialLimits.
   static Polynomial parse(std::string_view text, int num_variables);
   static Polynomial constant(const mpq_class& c, int num_variables);
   static Polynomial variable(int index, int num_variables);  // x_{index+1}, 0-based index
@@ -63,6 +85,7 @@ class Polynomial {
   bool is_constant() const;
   int degree() const;
 
+  // Multiplication and powers throw std::overflow_error rather than let an exponent wrap.
   Polynomial operator+(const Polynomial& o) const;
   Polynomial operator-(const Polynomial& o) const;
   Polynomial operator*(const Polynomial& o) const;

@@ -3,9 +3,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <limits>
 
 #include "core/io/atomic_file.hpp"
 #include "core/io/input_error.hpp"
+#include "core/io/strict_json.hpp"
 
 namespace delcert::io {
 
@@ -13,87 +15,120 @@ using nlohmann::json;
 
 namespace {
 
+// Every message names the file and the line of the field (StrictJson keeps the lines).
 struct Ctx {
   const std::string& file;
+  const StrictJson& doc;
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-    throw InputError(file, 0, "field '" + field + "': " + what);
+    throw InputError(file, doc.line(field), "field '" + field + "': " + what);
   }
 };
 
-const json& require(const json& obj, const char* key, const Ctx& c, const std::string& prefix = "") {
-  if (!obj.contains(key)) c.fail(prefix + key, "missing; it is required");
+// Refuses a key that is not in `known`: a misspelt optional key ("expeted") would otherwise turn a
+// check off without a word.
+void only_keys(const json& obj, const std::string& field, std::initializer_list<const char*> known, const Ctx& c) {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    if (std::any_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) continue;
+    std::string list;
+    for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+    const std::string path = json_member_path(field, it.key());
+    throw InputError(c.file, c.doc.key_line(path),
+                     "unknown key '" + path + "'" + (list.empty() ? "" : "; known here: " + list));
+  }
+}
+
+const json& require(const json& obj, const char* key, const Ctx& c, const std::string& parent = "") {
+  if (!obj.contains(key)) c.fail(json_member_path(parent, key), "missing; it is required");
   return obj.at(key);
 }
 
-long get_int(const json& v, const std::string& field, const Ctx& c) {
-  if (!v.is_number_integer()) c.fail(field, "expected an integer, found " + v.dump());
-  return v.get<long>();
+// An integer in [lo, hi], read exactly from the number as written (never wrapped).
+long get_int(const json& v, const std::string& field, const Ctx& c, long lo, long hi) {
+  std::optional<mpz_class> z = v.is_number() ? c.doc.integer(field) : std::nullopt;
+  if (!z) c.fail(field, "expected an integer, found " + v.dump());
+  if (*z < lo || *z > hi)
+    c.fail(field, z->get_str() + " is out of range: it must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+  return z->get_si();
 }
 
-// A rational given as a JSON string ("0.1", "1/3") or an integer. JSON floats are refused:
-// they are already rounded to binary and would silently change the manifold.
+// A rational given as a JSON string ("0.1", "1/3") or a JSON integer (of any size, exact). JSON
+// numbers with a fraction or exponent are refused: they are already rounded to binary and would
+// silently change the manifold.
 mpq_class get_rational(const json& v, const std::string& field, const Ctx& c) {
-  if (v.is_number_integer()) return mpq_class(std::to_string(v.get<long>()));
-  if (!v.is_string()) c.fail(field, "expected an exact rational as a string such as \"0.1\" or \"1/3\", found " + v.dump());
-  try {
-    return parse_rational(v.get<std::string>());
-  } catch (const std::invalid_argument& e) {
-    c.fail(field, e.what());
+  if (v.is_number()) {
+    if (auto z = c.doc.integer(field)) return mpq_class(*z);
+  } else if (v.is_string()) {
+    try {
+      return parse_rational(v.get<std::string>());
+    } catch (const std::invalid_argument& e) {
+      c.fail(field, e.what());
+    }
   }
+  c.fail(field, "expected an exact rational as a string such as \"0.1\" or \"1/3\", found " + v.dump());
 }
 
 std::vector<mpq_class> get_rationals(const json& v, const std::string& field, const Ctx& c, std::size_t n) {
   if (!v.is_array() || (n && v.size() != n))
     c.fail(field, "expected an array of " + (n ? std::to_string(n) + " " : std::string()) + "rationals");
   std::vector<mpq_class> out;
-  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(get_rational(v[i], field + "[" + std::to_string(i) + "]", c));
+  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(get_rational(v[i], json_element_path(field, i), c));
   return out;
+}
+
+std::string get_string(const json& v, const std::string& field, const Ctx& c) {
+  if (!v.is_string()) c.fail(field, "expected a string, found " + v.dump());
+  return v.get<std::string>();
 }
 
 Polynomial get_polynomial(const json& v, const std::string& field, int n, const Ctx& c) {
   if (!v.is_string()) c.fail(field, "expected a polynomial as a string, found " + v.dump());
   std::string text = v.get<std::string>();
+  std::string shown = text.size() > 200 ? text.substr(0, 200) + "..." : text;
   try {
     return Polynomial::parse(text, n);
   } catch (const PolynomialParseError& e) {
-    c.fail(field, std::string(e.what()) + " at character " + std::to_string(e.offset + 1) + " of \"" + text + "\"");
+    c.fail(field, std::string(e.what()) + " at character " + std::to_string(e.offset + 1) + " of \"" + shown + "\"");
+  } catch (const std::overflow_error& e) {  // not reachable within PolynomialLimits; never wrap
+    c.fail(field, std::string("polynomial too large: ") + e.what());
   }
 }
 
 ShapeSpec get_shape(const json& v, const std::string& field, const char* kind_key, const ManifoldSpec& s, const Ctx& c) {
   if (!v.is_object()) c.fail(field, "expected an object");
-  const json& k = require(v, kind_key, c, field + ".");
-  if (!k.is_string()) c.fail(field + "." + kind_key, "expected a string");
-  std::string kind = k.get<std::string>();
+  const std::string kind = get_string(require(v, kind_key, c, field), json_member_path(field, kind_key), c);
+  auto at = [&](const char* key) { return json_member_path(field, key); };
   ShapeSpec sh;
   const int N = s.ambient_dimension, m = s.intrinsic_dimension;
   if (kind == "sphere") {
+    only_keys(v, field, {kind_key, "center", "radius"}, c);
     sh.kind = ShapeSpec::Kind::sphere;
     if (m != N - 1) c.fail(field, "a sphere has intrinsic dimension N - 1");
-    sh.center = v.contains("center") ? get_rationals(v["center"], field + ".center", c, N)
+    sh.center = v.contains("center") ? get_rationals(v.at("center"), at("center"), c, N)
                                      : std::vector<mpq_class>(N, mpq_class(0));
-    sh.radius = get_rational(require(v, "radius", c, field + "."), field + ".radius", c);
-    if (sh.radius <= 0) c.fail(field + ".radius", "must be positive");
+    sh.radius = get_rational(require(v, "radius", c, field), at("radius"), c);
+    if (sh.radius <= 0) c.fail(at("radius"), "must be positive");
   } else if (kind == "product_of_circles") {
+    only_keys(v, field, {kind_key, "radii"}, c);
     sh.kind = ShapeSpec::Kind::product_of_circles;
-    sh.radii = get_rationals(require(v, "radii", c, field + "."), field + ".radii", c, 0);
+    sh.radii = get_rationals(require(v, "radii", c, field), at("radii"), c, 0);
     if (static_cast<int>(sh.radii.size()) != m || N != 2 * m)
-      c.fail(field + ".radii", "a product of m circles needs m radii and N = 2m");
+      c.fail(at("radii"), "a product of m circles needs m radii and N = 2m");
     for (auto& r : sh.radii)
-      if (r <= 0) c.fail(field + ".radii", "radii must be positive");
+      if (r <= 0) c.fail(at("radii"), "radii must be positive");
   } else if (kind == "torus_of_revolution") {
+    only_keys(v, field, {kind_key, "major_radius", "minor_radius"}, c);
     sh.kind = ShapeSpec::Kind::torus_of_revolution;
     if (m != 2 || N != 3) c.fail(field, "a torus of revolution is a surface in R^3");
-    sh.major_radius = get_rational(require(v, "major_radius", c, field + "."), field + ".major_radius", c);
-    sh.minor_radius = get_rational(require(v, "minor_radius", c, field + "."), field + ".minor_radius", c);
+    sh.major_radius = get_rational(require(v, "major_radius", c, field), at("major_radius"), c);
+    sh.minor_radius = get_rational(require(v, "minor_radius", c, field), at("minor_radius"), c);
     if (!(sh.major_radius > sh.minor_radius && sh.minor_radius > 0))
       c.fail(field, "needs major_radius > minor_radius > 0");
   } else if (kind == "so3") {
+    only_keys(v, field, {kind_key}, c);
     sh.kind = ShapeSpec::Kind::so3;
     if (m != 3 || N != 9) c.fail(field, "so3 has intrinsic dimension 3 in R^9");
   } else {
-    c.fail(field + "." + kind_key,
-           "unknown kind '" + kind + "'; known: sphere, product_of_circles, torus_of_revolution, so3");
+    c.fail(at(kind_key), "unknown kind '" + kind + "'; known: sphere, product_of_circles, torus_of_revolution, so3");
   }
   return sh;
 }
@@ -101,45 +136,44 @@ ShapeSpec get_shape(const json& v, const std::string& field, const char* kind_ke
 }  // namespace
 
 ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + std::min(e.byte, text.size()), '\n'));
-    throw InputError(source, line, std::string("invalid JSON: ") + e.what());
-  }
-  Ctx c{source};
+  const StrictJson doc = StrictJson::parse(text, source);
+  const json& j = doc.root();
+  Ctx c{source, doc};
   if (!j.is_object()) c.fail("(top level)", "expected a JSON object");
   const json& fmt = require(j, "format", c);
   if (!fmt.is_string() || fmt.get<std::string>() != "delcert-manifold v1")
     c.fail("format", "expected \"delcert-manifold v1\", found " + fmt.dump() + "; this reader knows version 1 only");
+  only_keys(j, "",
+            {"format", "name", "intrinsic_dimension", "ambient_dimension", "equations", "selector", "reach", "metric",
+             "parametrization", "bounding_box", "residual_tolerance", "expected"},
+            c);
   ManifoldSpec s;
   s.source = source;
-  s.name = j.value("name", std::string());
-  s.intrinsic_dimension = static_cast<int>(get_int(require(j, "intrinsic_dimension", c), "intrinsic_dimension", c));
-  s.ambient_dimension = static_cast<int>(get_int(require(j, "ambient_dimension", c), "ambient_dimension", c));
-  const int N = s.ambient_dimension, m = s.intrinsic_dimension;
-  if (N < 2 || N > 64) c.fail("ambient_dimension", "must be between 2 and 64");
-  if (m < 1 || m >= N) c.fail("intrinsic_dimension", "must be between 1 and ambient_dimension - 1");
+  if (j.contains("name")) s.name = get_string(j.at("name"), "name", c);
+  s.ambient_dimension = static_cast<int>(get_int(require(j, "ambient_dimension", c), "ambient_dimension", c, 2, 64));
+  const int N = s.ambient_dimension;
+  s.intrinsic_dimension = static_cast<int>(get_int(require(j, "intrinsic_dimension", c), "intrinsic_dimension", c, 1, N - 1));
+  const int m = s.intrinsic_dimension;
   const json& eq = require(j, "equations", c);
   if (!eq.is_array()) c.fail("equations", "expected an array of polynomial strings");
   if (static_cast<int>(eq.size()) != N - m)
     c.fail("equations", "has " + std::to_string(eq.size()) + " equations but a " + std::to_string(m) +
                             "-manifold in R^" + std::to_string(N) + " needs N - m = " + std::to_string(N - m));
   for (std::size_t i = 0; i < eq.size(); ++i) {
-    s.equations.push_back(get_polynomial(eq[i], "equations[" + std::to_string(i) + "]", N, c));
+    const std::string f = json_element_path("equations", i);
+    s.equations.push_back(get_polynomial(eq[i], f, N, c));
     s.equation_text.push_back(eq[i].get<std::string>());
-    if (s.equations.back().is_constant())
-      c.fail("equations[" + std::to_string(i) + "]", "is constant; every equation must involve the coordinates");
+    if (s.equations.back().is_constant()) c.fail(f, "is constant; every equation must involve the coordinates");
   }
-  if (j.contains("selector") && !j["selector"].is_null()) {
-    s.selector = get_polynomial(j["selector"], "selector", N, c);
-    s.selector_text = j["selector"].get<std::string>();
+  if (j.contains("selector") && !j.at("selector").is_null()) {
+    s.selector = get_polynomial(j.at("selector"), "selector", N, c);
+    s.selector_text = j.at("selector").get<std::string>();
   }
-  if (j.contains("reach") && !j["reach"].is_null()) {
-    const json& r = j["reach"];
+  if (j.contains("reach") && !j.at("reach").is_null()) {
+    const json& r = j.at("reach");
     if (!r.is_object()) c.fail("reach", "expected {\"value\": \"...\", \"kind\": \"exact\"|\"lower_bound\"}");
-    const json& v = require(r, "value", c, "reach.");
+    only_keys(r, "reach", {"value", "kind"}, c);
+    const json& v = require(r, "value", c, "reach");
     if (!v.is_string()) c.fail("reach.value", "expected a string such as \"1\" or \"sqrt(2)\"");
     ReachSpec rs;
     rs.text = v.get<std::string>();
@@ -152,38 +186,44 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
     } catch (const std::invalid_argument& e) {
       c.fail("reach.value", std::string(e.what()) + "; write a rational or sqrt(rational)");
     }
-    std::string kind = r.value("kind", std::string("exact"));
+    std::string kind = r.contains("kind") ? get_string(r.at("kind"), "reach.kind", c) : std::string("exact");
     if (kind != "exact" && kind != "lower_bound") c.fail("reach.kind", "expected \"exact\" or \"lower_bound\"");
     rs.exact = kind == "exact";
     s.reach = rs;
   }
-  if (j.contains("metric") && !j["metric"].is_null()) s.metric = get_shape(j["metric"], "metric", "type", s, c);
-  if (j.contains("parametrization") && !j["parametrization"].is_null())
-    s.parametrization = get_shape(j["parametrization"], "parametrization", "name", s, c);
-  if (j.contains("bounding_box") && !j["bounding_box"].is_null()) {
-    const json& b = j["bounding_box"];
+  if (j.contains("metric") && !j.at("metric").is_null()) s.metric = get_shape(j.at("metric"), "metric", "type", s, c);
+  if (j.contains("parametrization") && !j.at("parametrization").is_null())
+    s.parametrization = get_shape(j.at("parametrization"), "parametrization", "name", s, c);
+  if (j.contains("bounding_box") && !j.at("bounding_box").is_null()) {
+    const json& b = j.at("bounding_box");
     if (!b.is_array() || static_cast<int>(b.size()) != N)
       c.fail("bounding_box", "expected " + std::to_string(N) + " intervals [lo, hi]");
     for (std::size_t i = 0; i < b.size(); ++i) {
-      auto iv = get_rationals(b[i], "bounding_box[" + std::to_string(i) + "]", c, 2);
-      if (!(iv[0] < iv[1])) c.fail("bounding_box[" + std::to_string(i) + "]", "needs lo < hi");
+      const std::string f = json_element_path("bounding_box", i);
+      auto iv = get_rationals(b[i], f, c, 2);
+      if (!(iv[0] < iv[1])) c.fail(f, "needs lo < hi");
       s.bounding_box.emplace_back(iv[0].get_d(), iv[1].get_d());
     }
   }
   if (j.contains("residual_tolerance")) {
-    s.residual_tolerance = get_rational(j["residual_tolerance"], "residual_tolerance", c);
+    s.residual_tolerance = get_rational(j.at("residual_tolerance"), "residual_tolerance", c);
     if (s.residual_tolerance < 0) c.fail("residual_tolerance", "must be non-negative");
   }
-  if (j.contains("expected") && !j["expected"].is_null()) {
-    const json& e = j["expected"];
+  if (j.contains("expected") && !j.at("expected").is_null()) {
+    const json& e = j.at("expected");
+    if (!e.is_object()) c.fail("expected", "expected an object {\"euler_characteristic\": ..., \"betti_z2\": [...], ...}");
+    only_keys(e, "expected", {"euler_characteristic", "betti_z2", "betti_z3"}, c);
+    // Exact integers within long; a value beyond is refused, never wrapped.
+    constexpr long big = std::numeric_limits<long>::max();
     if (e.contains("euler_characteristic"))
-      s.expected.euler_characteristic = get_int(e["euler_characteristic"], "expected.euler_characteristic", c);
+      s.expected.euler_characteristic =
+          get_int(e.at("euler_characteristic"), "expected.euler_characteristic", c, -big, big);
     for (auto [key, dst] : {std::pair{"betti_z2", &s.expected.betti_z2}, std::pair{"betti_z3", &s.expected.betti_z3}}) {
       if (!e.contains(key)) continue;
-      const json& a = e[key];
-      std::string f = std::string("expected.") + key;
+      const json& a = e.at(key);
+      std::string f = json_member_path("expected", key);
       if (!a.is_array() || static_cast<int>(a.size()) != m + 1) c.fail(f, "expected m + 1 integers");
-      for (std::size_t i = 0; i < a.size(); ++i) dst->push_back(get_int(a[i], f + "[" + std::to_string(i) + "]", c));
+      for (std::size_t i = 0; i < a.size(); ++i) dst->push_back(get_int(a[i], json_element_path(f, i), c, 0, big));
     }
   }
   if (!s.parametrization && s.bounding_box.empty())
@@ -191,7 +231,7 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
   return s;
 }
 
-ManifoldSpec read_spec(const std::string& source) {
+std::string read_spec_text(const std::string& source) {
   constexpr std::string_view prefix = "builtin:";
   if (source.rfind(prefix, 0) == 0) {
     std::string name = source.substr(prefix.size());
@@ -201,9 +241,11 @@ ManifoldSpec read_spec(const std::string& source) {
       for (auto& n : builtin_spec_names()) known += (known.empty() ? "" : ", ") + n;
       throw InputError(source, 0, "no built-in manifold '" + name + "'; known: " + known);
     }
-    return parse_spec(text, source);
+    return text;
   }
-  return parse_spec(read_file(source), source);
+  return read_file(source);
 }
+
+ManifoldSpec read_spec(const std::string& source) { return parse_spec(read_spec_text(source), source); }
 
 }  // namespace delcert::io

@@ -67,9 +67,15 @@ struct ManifoldSpec {
   ExpectedTopology expected;
 };
 
-// `source` is a file path or builtin:NAME. Throws InputError naming the file and the field.
+// `source` is a file path or builtin:NAME. Throws InputError naming the file, the line and the
+// field. The reader is strict: unknown keys (at any level), duplicate keys, JSON numbers with a
+// fraction, integers out of range and polynomials beyond PolynomialLimits are refused.
 ManifoldSpec read_spec(const std::string& source);
 ManifoldSpec parse_spec(const std::string& json_text, const std::string& source);
+// The bytes read_spec parses: the file's content, or the compiled-in text of builtin:NAME. A
+// caller that also hashes the spec reads it once with this and passes the same text to
+// parse_spec (a second read of a FIFO or of a file being rewritten would hash other bytes).
+std::string read_spec_text(const std::string& source);
 
 // Names of the built-in specs, sorted.
 std::vector<std::string> builtin_spec_names();

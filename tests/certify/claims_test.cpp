@@ -2,6 +2,7 @@
 
 #include "certify/claims.hpp"
 #include "core/io/input_error.hpp"
+#include "support.hpp"
 
 namespace delcert::certify {
 namespace {
@@ -40,6 +41,40 @@ TEST(Claims, RefusesMalformedInput) {
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": \"abc\"}", 2, "eps");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": \"0.1\"\n \"gamma0\": \"0.2\"}", 3, "invalid JSON");
   expect_error("[1, 2]", 1, "JSON object");
+}
+
+// {"eps": "0.5", "eps": "2"} was read as eps = 2: the false claim was dropped without a word.
+TEST(Claims, DuplicateKeysAreRefused) {
+  expect_error("{\"format\": \"delcert-claims v1\", \"eps\": \"0.5\",\n \"eps\": \"2\"}", 2,
+               "duplicate key \"eps\" (first at line 1");
+  expect_error("{\"format\": \"delcert-claims v1\",\n\"format\": \"delcert-claims v1\"}", 2, "duplicate key \"format\"");
+  // Nested (claims have no nested values, but the duplicate is found before the type error).
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": {\"a\": 1,\n\n \"a\": 2}}", 4, "duplicate key \"a\"");
+  // The fixture of the soundness case.
+  try {
+    read_claims(test::fixture("soundness/parse/claims-dupkey.json"));
+    FAIL();
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(std::string(e.what()).find("duplicate key \"eps\""), std::string::npos) << e.what();
+  }
+}
+
+// "1/2/3" was read as 1/(2/3) = 3/2.
+TEST(Claims, TwoSlashesAreNotARational) {
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": \"1/2/3\"}", 2, "not a rational number");
+}
+
+// 18446744073709551615 was converted with get<long long>() and wrapped to -1. JSON integers are
+// read exactly as written, at any size (docs/certificate.md: a value is a rational string or a
+// JSON integer).
+TEST(Claims, IntegersAreReadExactly) {
+  Claims c = parse_claims(R"({"format": "delcert-claims v1", "sparsity": 18446744073709551615})", "c.json");
+  EXPECT_EQ(*c.sparsity, mpq_class("18446744073709551615"));
+  c = parse_claims(R"({"format": "delcert-claims v1", "eps": 100000000000000000000000000001})", "c.json");
+  EXPECT_EQ(*c.eps, mpq_class("100000000000000000000000000001"));
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"sparsity\": -18446744073709551617}", 2, "non-negative");
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": 1e3}", 2, "found 1e3");
 }
 
 }  // namespace

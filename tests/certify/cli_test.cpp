@@ -1,8 +1,11 @@
 // The delcert-certify binary: exit statuses, the final verdict line, atomic --out, and every
 // malformed input refused with exit status 2 and "file:line".
+#include <sys/stat.h>
+
 #include <fstream>
 #include <regex>
 
+#include "certify/sha256.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -84,6 +87,23 @@ TEST(Cli, UsageErrorsExit2) {
   EXPECT_NE(r.err.find("no built-in manifold"), std::string::npos) << r.err;
 }
 
+// Each input is read once, and the certificate hashes exactly the bytes that were checked. A FIFO
+// can be read only once: the run must end, naming the hash of what went through it (an earlier
+// version read the spec a second time to hash it and blocked here, or hashed other bytes).
+TEST(Cli, SpecIsReadOnceAndTheHashIsOfTheBytesChecked) {
+  TempDir dir("fifo");
+  const std::string fifo = dir.file("spec.json"), out = dir.file("cert.json");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string spec = fixture("manifolds/sphere-2.json");
+  RunResult r = run("(timeout 60 cat " + q(spec) + " > " + q(fifo) + " &); timeout 60 " + binary() + " --manifold " +
+                        q(fifo) + " --points " + q(fixture("points/octahedron.off")) + " --complex " +
+                        q(fixture("certify/octahedron.complex")) + " --no-times --out " + q(out),
+                    dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  auto j = nlohmann::json::parse(read_text(out));
+  EXPECT_EQ(j["inputs"]["manifold"]["sha256"], Sha256::hex(read_text(spec)));
+}
+
 struct Bad {
   std::string spec, points, complex, claims;
   std::string file;  // the file the message must name, with a line number
@@ -103,7 +123,9 @@ TEST(Cli, MalformedInputExits2WithFileAndLine) {
                         "complex-unknown-version.txt"})
     cases.push_back({sphere, tetra, fixture(std::string("bad/") + f), "", fixture(std::string("bad/") + f)});
   for (const char* f : {"spec-bad-polynomial.json", "spec-equation-count.json", "spec-float-literal.json",
-                        "spec-invalid-json.json", "spec-unknown-version.json"})
+                        "spec-invalid-json.json", "spec-unknown-version.json", "spec-duplicate-key.json",
+                        "spec-unknown-key.json", "spec-unknown-nested-key.json", "spec-huge-integer.json",
+                        "spec-two-slashes.json"})
     cases.push_back({fixture(std::string("bad/") + f), tetra, "", "", fixture(std::string("bad/") + f)});
   cases.push_back({fixture("certify/spec-bad-field.json"), tetra, "", "", fixture("certify/spec-bad-field.json")});
   for (const char* f : {"claims-float.json", "claims-unknown-key.json", "claims-version.json", "claims-negative.json",

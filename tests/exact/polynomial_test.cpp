@@ -23,6 +23,20 @@ TEST(ParseRational, IntegersDecimalsFractionsAreExact) {
   EXPECT_THROW(parse_rational(""), std::invalid_argument);
 }
 
+// "1/2/3" was read as 1/(2/3) = 3/2 here and as (1/2)/3 = 1/6 by the polynomial parser: it has no
+// one meaning and is refused by both.
+TEST(ParseRational, OneSlashAtMost) {
+  try {
+    parse_rational("1/2/3");
+    FAIL() << "1/2/3 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("not a rational"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_rational("1//2"), std::invalid_argument);
+  EXPECT_THROW(parse_rational("1/2/"), std::invalid_argument);
+  EXPECT_EQ(parse_rational("10/4"), mpq_class(5, 2));
+}
+
 TEST(RationalToString, FiniteDecimalsAndFractions) {
   EXPECT_EQ(rational_to_string(mpq_class(1, 10)), "0.1");
   EXPECT_EQ(rational_to_string(mpq_class(-1, 8)), "-0.125");
@@ -78,6 +92,117 @@ TEST(Polynomial, ParseErrorsSayWhere) {
   EXPECT_EQ(offset_of("2 $ x1", 3), 2);
   EXPECT_EQ(offset_of("", 3), 0);
   EXPECT_EQ(offset_of("y1", 3), 0);
+}
+
+// The message of the PolynomialParseError thrown for `text`, or "" if it parses.
+std::string parse_error(const std::string& text, int n) {
+  try {
+    Polynomial::parse(text, n);
+  } catch (const PolynomialParseError& e) {
+    return e.what();
+  }
+  return "";
+}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+std::string repeat(const std::string& s, int k) {
+  std::string out;
+  for (int i = 0; i < k; ++i) out += s;
+  return out;
+}
+
+// Exponents were uint32 and wrapped: ((x1^4096)^4096)^256 = x1^(2^32) was read as 1.
+TEST(PolynomialLimits, ExponentsNeverWrap) {
+  const std::string e = parse_error("x1^2 + x2^2 + x3^2 - ((x1^4096)^4096)^256", 3);
+  EXPECT_TRUE(contains(e, "exponent 4096 too large")) << e;
+  EXPECT_TRUE(contains(e, "256")) << e;
+  // The exponent is compared as a digit string, whatever its length.
+  EXPECT_TRUE(contains(parse_error("x1^99999999999999999999999", 1), "too large"));
+  // A product of two admissible powers above the degree limit.
+  EXPECT_TRUE(contains(parse_error("x1^200 * x1^57", 1), "degree 257"));
+  EXPECT_TRUE(contains(parse_error("(x1^128)^3", 1), "degree 384"));
+  // Just inside: degree 256.
+  Polynomial p = Polynomial::parse("(x1^128)^2 * 1 + x1^200 * x1^56 - x1^256", 1);
+  EXPECT_EQ(p, Polynomial::parse("x1^256", 1));
+  EXPECT_EQ(p.degree(), 256);
+  EXPECT_EQ(Polynomial::parse("2^256", 1).terms()[0].coefficient, mpq_class(mpz_class(1) << 256));
+  // Outside the parser, an exponent that would pass 2^32 - 1 throws instead of wrapping.
+  Polynomial big = Polynomial::variable(0, 1).pow(1u << 31);
+  EXPECT_THROW(big * big, std::overflow_error);
+}
+
+// Variable indices were truncated to 9 digits: x0000000031 was read as x3.
+TEST(PolynomialLimits, VariableIndexIsReadWhole) {
+  EXPECT_TRUE(contains(parse_error("x0000000031^2 - 1", 3), "leading zeros")) << parse_error("x0000000031^2 - 1", 3);
+  EXPECT_TRUE(contains(parse_error("x03", 3), "leading zeros"));
+  EXPECT_TRUE(contains(parse_error("x31", 3), "variable x31 out of range x1..x3"));
+  EXPECT_TRUE(contains(parse_error("x1000000003", 3), "variable x1000000003 out of range"));
+  EXPECT_TRUE(contains(parse_error("x99999999999999999999999999", 3), "out of range"));
+  EXPECT_TRUE(contains(parse_error("x0", 3), "variable x0 out of range"));
+  EXPECT_EQ(Polynomial::parse("x10", 10), Polynomial::variable(9, 10));
+}
+
+TEST(PolynomialLimits, ChainedDivisionIsRefused) {
+  EXPECT_TRUE(contains(parse_error("x1/2/3", 1), "ambiguous"));
+  EXPECT_TRUE(contains(parse_error("1/2/3", 1), "ambiguous"));
+  EXPECT_EQ(Polynomial::parse("(x1/2)/3", 1), Polynomial::parse("x1/6", 1));
+  EXPECT_EQ(Polynomial::parse("x1/2*x1/3", 1), Polynomial::parse("x1^2/6", 1));
+}
+
+// (x1^9999)^9999 was expanded by 10^8 rational products; (x1+x2+x3+1)^400 had 10^7 terms.
+// Every limit is checked before the work it bounds, so these are refused at once.
+TEST(PolynomialLimits, TermsAndDegreeAreBoundedBeforeExpanding) {
+  EXPECT_TRUE(contains(parse_error("x1^2 + x2^2 + x3^2 - (x1^9999)^9999 - 1", 3), "too large"));
+  EXPECT_TRUE(contains(parse_error("(x1+x2+x3+1)^400", 3), "too large"));
+  // Degree 200 is admissible, but C(203, 3) = 1373701 monomials are not.
+  const std::string t = parse_error("(x1+x2+x3+1)^200", 3);
+  EXPECT_TRUE(contains(t, "too large")) << t;
+  EXPECT_TRUE(contains(t, "10000 terms")) << t;
+  // A power is bounded by the products of e of its terms, C(t + e - 1, e): C(41, 3) = 10660.
+  EXPECT_TRUE(contains(parse_error("(x1+x2+x3+1)^38", 3), "more than 10000 terms"));
+  // The term products of the whole expansion: (x1+x2+x3+1)^33 needs under 10^6 of them (its
+  // 7140 terms are exact multinomial coefficients), ^34 would need 1032987 and is refused unworked.
+  Polynomial p33 = Polynomial::parse("(x1+x2+x3+1)^33", 3);
+  EXPECT_EQ(p33.terms().size(), 7140u);
+  std::vector<mpq_class> ones{1, 1, 1};
+  EXPECT_EQ(p33.evaluate(std::span<const mpq_class>(ones)), mpq_class(mpz_class(1) << 66));  // 4^33
+  const std::string p = parse_error("(x1+x2+x3+1)^34", 3);
+  EXPECT_TRUE(contains(p, "too large") && contains(p, "1000000 term products")) << p;
+  // Terms just inside and just outside the limit: 100 x 100 = 10000 distinct monomials.
+  auto sum_of_powers = [](const char* x, int k) {
+    std::string t = "(";
+    for (int i = 0; i < k; ++i) t += (i ? "+" : "") + std::string(x) + "^" + std::to_string(i);
+    return t + ")";
+  };
+  const std::string a100 = sum_of_powers("x1", 100), b100 = sum_of_powers("x2", 100);
+  EXPECT_EQ(Polynomial::parse(a100 + "*" + b100, 3).terms().size(), 10000u);
+  EXPECT_TRUE(contains(parse_error(a100 + "*" + sum_of_powers("x2", 101), 3), "more than 10000 terms"));
+  // Sums are checked too.
+  EXPECT_TRUE(contains(parse_error(a100 + "*" + b100 + " + x3", 3), "10001 terms"));
+}
+
+TEST(PolynomialLimits, CoefficientsTextAndLiterals) {
+  // 10^1000 has 3322 bits: its 6th power is within 20000 bits, its 7th is not.
+  EXPECT_EQ(parse_error("(1e1000*x1 + 1)^6", 1), "");
+  EXPECT_TRUE(contains(parse_error("(1e1000*x1 + 1)^7", 1), "20000 bits"));
+  EXPECT_TRUE(contains(parse_error("1e99999*x1", 1), "too large"));
+  // A literal of 1000 characters is read; one of 1001 is not.
+  EXPECT_EQ(Polynomial::parse("x1 - " + std::string(1000, '7'), 1).terms().size(), 2u);
+  EXPECT_TRUE(contains(parse_error("x1 - " + std::string(1001, '7'), 1), "literal too large"));
+  // The whole text.
+  std::string longest = "x1" + std::string(PolynomialLimits::max_text_length - 2, ' ');
+  EXPECT_EQ(parse_error(longest, 1), "");
+  EXPECT_TRUE(contains(parse_error(longest + " ", 1), "too large"));
+}
+
+// 50,000 nested parentheses overflowed the stack (exit 139). Nesting is counted and refused.
+TEST(PolynomialLimits, DeepNestingIsRefusedWithoutRecursingFurther) {
+  const int max = PolynomialLimits::max_nesting;
+  EXPECT_EQ(parse_error(repeat("(", max) + "x1" + repeat(")", max), 1), "");
+  EXPECT_TRUE(contains(parse_error(repeat("(", max + 1) + "x1" + repeat(")", max + 1), 1), "too deeply nested"));
+  EXPECT_TRUE(contains(parse_error(repeat("(", 45000) + "x1" + repeat(")", 45000), 1), "too deeply nested"));
+  EXPECT_EQ(parse_error(repeat("-", max) + "x1", 1), "");
+  EXPECT_TRUE(contains(parse_error(repeat("-", 50000) + "x1", 1), "too deeply nested"));
+  EXPECT_TRUE(contains(parse_error(repeat("-(", 30000) + "x1" + repeat(")", 30000), 1), "too deeply nested"));
 }
 
 TEST(Polynomial, ExactDerivatives) {

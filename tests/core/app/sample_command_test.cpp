@@ -49,7 +49,7 @@ TEST_P(SampleCommandBadInput, ExitsTwoWithAMessageAndWritesNothing) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, SampleCommandBadInput,
     ::testing::Values(BadRun{"--manifold builtin:nope --eps 0.3", "no built-in manifold 'nope'"},
-                      BadRun{"--manifold @FIX@bad/spec-equation-count.json --eps 0.3", "spec-equation-count.json: field 'equations'"},
+                      BadRun{"--manifold @FIX@bad/spec-equation-count.json --eps 0.3", "spec-equation-count.json:6: field 'equations'"},
                       BadRun{"--manifold @FIX@bad/spec-invalid-json.json --eps 0.3", "spec-invalid-json.json:5: invalid JSON"},
                       BadRun{"--manifold @FIX@does-not-exist.json --eps 0.3", "cannot open file"},
                       BadRun{"--manifold builtin:sphere-2 --eps -1", "--eps"},

@@ -61,13 +61,141 @@ TEST_P(BadSpec, NamesFileAndField) {
                            c.line, c.message_part);
 }
 
+// Every message names the line of the field (the JSON reader keeps them).
 INSTANTIATE_TEST_SUITE_P(
     Malformed, BadSpec,
-    ::testing::Values(BadCase{"spec-equation-count.json", 0, "field 'equations': has 1 equations but a 2-manifold in R^4 needs N - m = 2"},
-                      BadCase{"spec-bad-polynomial.json", 0, "field 'equations[0]': variable x4 out of range x1..x3"},
-                      BadCase{"spec-unknown-version.json", 0, "field 'format': expected \"delcert-manifold v1\""},
+    ::testing::Values(BadCase{"spec-equation-count.json", 6, "field 'equations': has 1 equations but a 2-manifold in R^4 needs N - m = 2"},
+                      BadCase{"spec-bad-polynomial.json", 6, "field 'equations[0]': variable x4 out of range x1..x3"},
+                      BadCase{"spec-unknown-version.json", 2, "field 'format': expected \"delcert-manifold v1\""},
                       BadCase{"spec-invalid-json.json", 5, "invalid JSON"},
-                      BadCase{"spec-float-literal.json", 0, "field 'reach.value'"}));
+                      BadCase{"spec-float-literal.json", 6, "field 'reach.value'"},
+                      BadCase{"spec-duplicate-key.json", 8, "duplicate key \"value\" (first at line 7 in 'reach')"},
+                      BadCase{"spec-unknown-key.json", 8, "unknown key 'expeted'"},
+                      BadCase{"spec-unknown-nested-key.json", 8, "unknown key 'metric.centre'; known here: type, center, radius"},
+                      BadCase{"spec-huge-integer.json", 8,
+                              "field 'expected.euler_characteristic': 18446744073709551618 is out of range"},
+                      BadCase{"spec-two-slashes.json", 8, "field 'parametrization.radius': not a rational number"}));
+
+// The soundness cases of fixtures/soundness/: each spec meant something other than it was read as.
+INSTANTIATE_TEST_SUITE_P(
+    Soundness, BadSpec,
+    ::testing::Values(BadCase{"../soundness/parse/spec-exponent-wrap.json", 6, "exponent 4096 too large"},
+                      BadCase{"../soundness/parse/spec-varindex.json", 7, "variable x0000000031: leading zeros"},
+                      BadCase{"../soundness/hang/spec-exponent-hang.json", 6, "exponent 9999 too large"}));
+
+// Specs given as text; `line` is where the message must point.
+void expect_spec_error(const std::string& text, long line, const std::string& part) {
+  try {
+    parse_spec(text, "s.json");
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("s.json:" + std::to_string(line) + ": ", 0), 0u) << e.what();
+  }
+}
+
+// A valid sphere spec with `extra` spliced in as the last top-level members (one per line).
+std::string sphere_with(const std::string& extra) {
+  return "{\"format\": \"delcert-manifold v1\",\n"
+         "\"intrinsic_dimension\": 2,\n"
+         "\"ambient_dimension\": 3,\n"
+         "\"equations\": [\"x1^2 + x2^2 + x3^2 - 1\"],\n"
+         "\"bounding_box\": [[\"-1\", \"1\"], [\"-1\", \"1\"], [\"-1\", \"1\"]]" +
+         (extra.empty() ? "" : ",\n" + extra) + "}";
+}
+
+TEST(Spec, SphereWithParsesAsIs) {
+  ManifoldSpec s = parse_spec(sphere_with("\"expected\": {\"euler_characteristic\": -3}"), "s.json");
+  EXPECT_EQ(s.expected.euler_characteristic, -3);
+}
+
+TEST(Spec, DuplicateKeysAreRefusedAtEveryLevel) {
+  expect_spec_error(sphere_with("\"ambient_dimension\": 4"), 6, "duplicate key \"ambient_dimension\" (first at line 3");
+  expect_spec_error(sphere_with("\"reach\": {\"value\": \"1\",\n\"kind\": \"exact\", \"kind\": \"lower_bound\"}"), 7,
+                    "duplicate key \"kind\"");
+  expect_spec_error(sphere_with("\"expected\": {\"betti_z2\": [1, 0, 1],\n\n\"betti_z2\": [1, 1, 1]}"), 8,
+                    "in 'expected'");
+  // Inside an array: the keys of each object are counted separately, and a repeat is still found.
+  expect_spec_error(sphere_with("\"expected\": {\"betti_z3\": [{\"a\": 1, \"b\": 2}, {\"a\": 1,\n \"a\": 2}]}"), 7,
+                    "in 'expected.betti_z3[1]'");
+}
+
+TEST(Spec, UnknownKeysAreRefusedAtEveryLevel) {
+  expect_spec_error(sphere_with("\"expeted\": {\"euler_characteristic\": 2}"), 6, "unknown key 'expeted'");
+  expect_spec_error(sphere_with("\"reach\": {\"value\": \"1\",\n \"knd\": \"lower_bound\"}"), 7, "unknown key 'reach.knd'");
+  expect_spec_error(sphere_with("\"metric\": {\"type\": \"sphere\", \"radius\": \"1\", \"radii\": [\"1\"]}"), 6,
+                    "unknown key 'metric.radii'");
+  expect_spec_error(sphere_with("\"parametrization\": {\"name\": \"sphere\", \"radius\": \"1\",\n\"centre\": [\"0\"]}"), 7,
+                    "unknown key 'parametrization.centre'");
+  expect_spec_error(sphere_with("\"expected\": {\"euler\": 2}"), 6, "unknown key 'expected.euler'");
+  expect_spec_error(sphere_with("\"Reach\": {\"value\": \"1\"}"), 6, "unknown key 'Reach'");
+}
+
+// JSON integers were converted with get<long>(): 2^64 - 1 became -1. They are read exactly as
+// written, and refused when out of range.
+TEST(Spec, IntegersAreReadExactlyOrRefused) {
+  expect_spec_error(sphere_with("\"expected\": {\"euler_characteristic\": 18446744073709551615}"), 6,
+                    "18446744073709551615 is out of range");
+  expect_spec_error(sphere_with("\"expected\": {\"euler_characteristic\": -9223372036854775809}"), 6, "out of range");
+  expect_spec_error(sphere_with("\"expected\": {\"betti_z2\": [1, 0,\n -1]}"), 7, "field 'expected.betti_z2[2]'");
+  expect_spec_error(sphere_with("\"expected\": {\"euler_characteristic\": 2.0}"), 6, "expected an integer");
+  expect_spec_error(sphere_with("\"expected\": {\"euler_characteristic\": 2e0}"), 6, "expected an integer");
+  // ambient_dimension 2^64 + 3 would wrap to 3.
+  std::string t = sphere_with("");
+  t.replace(t.find("\"ambient_dimension\": 3"), 22, "\"ambient_dimension\": 18446744073709551619");
+  expect_spec_error(t, 3, "field 'ambient_dimension': 18446744073709551619 is out of range");
+  // A JSON integer where a rational is expected: exact at any size.
+  ManifoldSpec s = parse_spec(sphere_with("\"parametrization\": {\"name\": \"sphere\", \"radius\": 100000000000000000000001}"),
+                              "s.json");
+  EXPECT_EQ(s.parametrization->radius, mpq_class("100000000000000000000001"));
+  expect_spec_error(sphere_with("\"residual_tolerance\": 1e-9"), 6, "exact rational");
+}
+
+TEST(Spec, RationalsWithTwoSlashesAreRefused) {
+  expect_spec_error(sphere_with("\"reach\": {\"value\": \"1/2/3\"}"), 6, "not a rational number");
+  std::string t = sphere_with("");
+  t.replace(t.find("[\"-1\", \"1\"]]"), 12, "[\"-1\", \"1/2/3\"]]");
+  expect_spec_error(t, 5, "field 'bounding_box[2][1]': not a rational number");
+  expect_spec_error(sphere_with("\"residual_tolerance\": \"1/2/3\""), 6, "not a rational number");
+}
+
+TEST(Spec, PolynomialLimitsAreReportedWithTheLine) {
+  std::string t = sphere_with("");
+  t.replace(t.find("x1^2 + x2^2"), 11, "(x1+x2+x3+1)^200 + x2^2");
+  expect_spec_error(t, 4, "field 'equations[0]': polynomial too large");
+  t = sphere_with("\"selector\": \"" + std::string(40000, '(') + "x1" + std::string(40000, ')') + "\"");
+  expect_spec_error(t, 6, "too deeply nested");
+}
+
+// A JSON document nested 100,000 deep is refused before any recursion can overflow the stack.
+TEST(Spec, DeepJsonIsRefused) {
+  expect_spec_error(sphere_with("\"expected\": " + std::string(100000, '[') + std::string(100000, ']')), 6,
+                    "nested too deeply");
+}
+
+// Every spec in the repository that is meant to be valid still reads under the strict rules.
+TEST(Spec, EveryValidFixtureSpecReads) {
+  for (const char* f : {"specs/ellipsoid.json", "certify/sphere-4.json", "soundness/hang/spec-plane.json",
+                        "soundness/overflow/spec.json", "certify/spec-bad-field.json"}) {
+    SCOPED_TRACE(f);
+    if (std::string(f) == "certify/spec-bad-field.json") {  // valid JSON, one bad value, at its line
+      test::expect_input_error([](const std::string& p) { read_spec(p); }, fixture(f), 7, "field 'reach.value'");
+      continue;
+    }
+    EXPECT_NO_THROW(read_spec(fixture(f)));
+  }
+  // The 300-digit coefficients of the overflow case are read exactly.
+  ManifoldSpec o = read_spec(fixture("soundness/overflow/spec.json"));
+  EXPECT_EQ(o.equations[0].degree(), 4);
+}
+
+// The text read_spec parses is what a caller hashes: the file's bytes or the compiled-in text.
+TEST(Spec, ReadSpecTextIsWhatIsParsed) {
+  EXPECT_EQ(read_spec_text("builtin:sphere-2"), std::string(builtin_spec_text("sphere-2")));
+  const std::string path = fixture("manifolds/sphere-2.json");
+  EXPECT_EQ(parse_spec(read_spec_text(path), path).equations, read_spec(path).equations);
+}
 
 TEST(Spec, UnknownBuiltinListsTheKnownOnes) {
   try {
