@@ -1,51 +1,7 @@
-// The refiner: the paper's Algorithm 1 (§4.2) on the tangential Delaunay complex, and the
-// practical mode that adds the rules a realistic ε needs (DESIGN §2 "Refinement", issue 6).
-//
-// Configurations, by rule (the canonical processing order is (rule, point, cell, apex)):
-//   big           Rule 1: a star cell σ ∈ star(p) with R_p(σ) >= ε       -> insert ψ_p(c_p(σ))
-//   bad_star      Rule 2: a Γ0-bad σ ∈ star(p) with R_p(σ) < ε           -> insert Pick_valid(σ, p)
-//   bad_cosph     Rule 2: a Γ0-bad (m+1)-simplex q * σ of cosph(p)       -> insert Pick_valid(q * σ, p)
-//   unprotected   practical only: a Γ0-good q * σ of cosph(p)            -> insert Pick_valid(σ, p)
-//   inconsistent  practical only: σ in star(p) but not in star(q), q ∈ σ  -> insert Pick_valid(σ, p*)
-//                 where p* is the vertex whose star holds σ with the largest R_p*(σ)
-//
-// Paper mode is exactly Algorithm 1: Rule 1 is applied while a big configuration exists, Rule 2
-// only when none does. Each round takes every configuration of the rule that applies, sorted
-// canonically, and applies them one after the other; a configuration is applied only if it is
-// still a configuration of the current complex, i.e. no point inserted earlier in the round lies
-// in its Delaunay ball B(c_p(σ), R_p(σ)) (a star cell with an empty ball stays, with the same
-// c_p and R_p; cosph membership and Γ0-badness do not depend on other points). After a Rule 2
-// insertion x, the star of x alone is computed: if it has a big cell, the round stops so that
-// Rule 1 comes first again (the stars of older points cannot gain big cells: their restricted
-// Voronoi cells only shrink). So every run is an execution of Algorithm 1, with two bounded
-// stand-ins for the paper's unbounded steps: Pick_valid draws at most `pick_attempts` candidates
-// per configuration and round (the paper loops until it finds a good point; a configuration
-// left over is tried again next round, and a round that inserts nothing stops the run as
-// "stalled"), and Rule 1 uses the closest point of M to c_p(σ) when ψ_p(c_p(σ)) fails.
-// "Converged" means that no rule applies any more; in paper mode that says nothing about
-// consistency or protection, which report.json measures separately.
-//
-// Practical mode (default) also needs, at realistic ε, to end with consistent stars and empty
-// cosph(p) (so the output is what the certifier checks):
-//   - unprotected: a Γ0-good q * σ in cosph(p) leaves σ unprotected; the paper proves such
-//     simplices cannot exist under H0-H5, at realistic ε they do. Inserting in σ's picking
-//     region kills σ (the point lands inside its Delaunay ball).
-//   - inconsistent: the paper's theorem makes stars consistent once they are thick and
-//     protected with ε tiny against the reach; at realistic ε some are not. Inserting in the
-//     picking region of σ at p* kills σ in star(p*) (as in Boissonnat-Ghosh's manifold meshing,
-//     where inconsistent configurations are refined through their picking regions).
-//   - cosph is taken with the bound δ0^2 max(L(q * σ), μ0 ε)^2 instead of δ0^2 L(q * σ)^2 and
-//     counts points on or inside the ball too: an empty cosph then implies the claimed
-//     δ̌^2 = δ0^2 (μ0 ε)^2 protection even on inputs denser than μ0 ε (random samples).
-//   - Pick_valid also rejects candidates closer than μ0 ε to a point (the sparsity invariant of
-//     the paper's termination theorem, enforced instead of inferred) and, after `pick_attempts`
-//     rejections, falls back to the best candidate seen (farther than μ0 ε if any, then the
-//     farthest from the points); a fallback closer than μ0 ε is counted as a sparsity
-//     violation, never hidden.
-//   - the decisions use small safety margins (relative 1e-9) on the side of "refine more", so
-//     that the exact certifier agrees with the double-precision producer.
-// One round in practical mode applies Rule 1 alone if it has configurations, and otherwise all
-// other rules in one canonical sequence.
+// The refiner: refine() runs the paper's Algorithm 1 (§4.2) on the tangential Delaunay complex
+// (--mode paper) or the practical mode that adds the rules a realistic ε needs (the default).
+// Declares the rules, RefineParameters, RefineResult with its statistics and final measures, and
+// refine(). The rules, the two modes and the caps are described in docs/refinement.md.
 #pragma once
 
 #include <array>
