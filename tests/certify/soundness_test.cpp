@@ -46,9 +46,11 @@ TEST(Soundness, OverflowCaseIsRefutedWithTheWitness) {
   }
   // No check may print a certified margin contradicting its verdict (the old run printed a power
   // margin of -4.32 next to CERTIFIED).
-  for (const auto& c : j["checks"])
-    if (c["name"] == "power_protection" && c["verdict"] == "CERTIFIED")
+  for (const auto& c : j["checks"]) {
+    if (c["name"] == "power_protection" && c["verdict"] == "CERTIFIED") {
       EXPECT_GE(std::stod(c["margin"]["min_power_margin"]["certified_lower_bound"].get<std::string>()), 0.0);
+    }
+  }
 
   // Audit mode (no --complex): never CERTIFIED.
   r = certify_cmd("--manifold " + soundness("overflow/spec.json") + " --points " + soundness("overflow/points.txt"), dir);
