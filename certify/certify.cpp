@@ -205,6 +205,7 @@ Certificate run_certify(const CertifyOptions& o) {
   exact::ImplicitSystem system(spec.equations, N);
   PointGrid grid(P, m);
   exact::FilterContext ctx0;
+  ctx0.force_exact = o.force_exact;
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx0);
   watch.record(C, "sparsity");
 
@@ -225,6 +226,7 @@ Certificate run_certify(const CertifyOptions& o) {
     }
   std::vector<StarReport> reports(n);
   std::vector<exact::FilterContext> ctx(threads);
+  for (auto& c : ctx) c.force_exact = o.force_exact;
   parallel_for(n, threads, [&](std::size_t p, int w) {
     reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed[p] : nullptr, ctx[w]);
   });
@@ -323,6 +325,7 @@ Certificate run_certify(const CertifyOptions& o) {
   cons.name = "consistency";
   long inconsistent = 0;
   exact::FilterContext ctx_w;
+  ctx_w.force_exact = o.force_exact;
   for (const auto& s : tops) {
     bool bad = false;
     for (int v : s) {
@@ -435,7 +438,8 @@ Certificate run_certify(const CertifyOptions& o) {
   for (const auto& s : K.simplices)
     if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
   const FaceLattice lattice = face_lattice(lattice_simplices);
-  ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter);
+  ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
+                                         o.force_exact);
   watch.record(C, "thickness");
 
   // Check 8: topology.

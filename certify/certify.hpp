@@ -25,6 +25,10 @@ struct CertifyOptions {
   std::string complex;   // empty: audit the point set (compute Del_TM)
   std::string claims;    // empty: no claims
   int threads = 1;
+  // Every exact/ predicate skips its interval filter and decides exactly (and check 7 decides
+  // every cell in exact rationals). For differential tests: the certificate must be the same
+  // apart from the filter statistics and the times.
+  bool force_exact = false;
 };
 
 // Throws io::InputError on bad input (exit status 2); never writes anything.

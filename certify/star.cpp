@@ -725,7 +725,9 @@ mpq_class lower_max(const mpq_class& a, const mpq_class& b) { return a > b ? a :
 // The conditions of Definition 3.1 for one cell, in number type T (IA: enclosures; mpq_class:
 // exact). rows: b(x) (m entries) per local point; t: |pi_p(x) - p|^2 = b^T G^-1 b per local
 // point. Returns "" when secure, else the first failed condition; `undecided` when an interval
-// comparison could not decide.
+// comparison could not decide. The points tested for delta-protection are those of by_t (every
+// point that can matter, by increasing projected distance), in that order for both number types,
+// so that the named point does not depend on the filter.
 template <class T>
 std::string secure_cell(const Local& L, const List& c, const std::vector<int>& by_t, const std::vector<T>& b, const std::vector<T>& t,
                         const std::vector<T>& G, const std::vector<T>& Ginv, const T& eps2, const T& delta,
@@ -820,7 +822,15 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
     for (int a = 0; a < m; ++a) e -= b[q * m + a] * y[a];
     int g1 = greater(e, T(0));
     int g2 = g1 == 1 ? greater(e * e, four_delta2_r2) : g1;
-    if (g1 == 0 || g2 == 0) return "not delta-protected (point " + std::to_string(L.global[q]) + ")";
+    if (g1 == 0 || g2 == 0) {
+      // The witness is the first failing point in by_t order, whichever path decides: when an
+      // earlier point was undecided, leave the naming to the exact evaluation.
+      if (prot_fail < 0) {
+        undecided = true;
+        return "";
+      }
+      return "not delta-protected (point " + std::to_string(L.global[q]) + ")";
+    }
     if (g1 < 0 || g2 < 0) prot_fail = -1;
   }
   if (prot_fail < 0) undecided = true;
@@ -855,7 +865,7 @@ void SecureParams::prepare() {
 }
 
 SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simplex>& star, const SecureParams& sp,
-                            exact::FilterContext&, const StarReport* report) {
+                            exact::FilterContext& ctx, const StarReport* report) {
   const io::PointSet& P = *S.points;
   const int m = S.m, N = P.dimension;
   SecureReport out;
@@ -930,8 +940,9 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
     List c{};
     for (int i = 0, k = 1; i <= m; ++i)
       if (s[i] != p) c[k++] = L.local_of(s[i]);
-    bool undecided = false;
-    std::string why = secure_cell<IA>(L, c, by_t, b, t, G, Gi, eps2, delta, ups2, short2, undecided);
+    bool undecided = ctx.force_exact;  // force_exact: straight to the exact rationals
+    std::string why;
+    if (!ctx.force_exact) why = secure_cell<IA>(L, c, by_t, b, t, G, Gi, eps2, delta, ups2, short2, undecided);
     if (undecided) {  // decide exactly
       ++out.exact_fallbacks;
       if (bq.empty()) {
@@ -950,7 +961,7 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
         }
       }
       undecided = false;
-      why = secure_cell<mpq_class>(L, c, {}, bq, tq, Gq, Giq, sp.eps * sp.eps, sp.delta, sp.upsilon0 * sp.upsilon0,
+      why = secure_cell<mpq_class>(L, c, by_t, bq, tq, Gq, Giq, sp.eps * sp.eps, sp.delta, sp.upsilon0 * sp.upsilon0,
                                    sp.shortest * sp.shortest, undecided);
     }
     if (why.empty()) {

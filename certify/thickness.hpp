@@ -23,9 +23,9 @@ struct ThicknessResult {
 };
 
 ThicknessResult check_thickness(const io::PointSet& points, const io::Complex& complex, int m, const mpq_class* gamma0,
-                                int threads, exact::FilterStats& stats);
+                                int threads, exact::FilterStats& stats, bool force_exact = false);
 // The same with the complex's face lattice already built (face_lattice(complex.simplices)).
 ThicknessResult check_thickness(const io::PointSet& points, const FaceLattice& lattice, int m, const mpq_class* gamma0,
-                                int threads, exact::FilterStats& stats);
+                                int threads, exact::FilterStats& stats, bool force_exact = false);
 
 }  // namespace delcert::certify

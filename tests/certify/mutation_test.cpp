@@ -1,7 +1,14 @@
 // Mutation suite (soundness): valid certified inputs are mutated in seeded, random ways - drop a
 // simplex, add a simplex, replace a vertex, swap two points, move a point onto a Delaunay sphere
 // to within one ulp - and every mutant must come back REFUTED or UNDECIDED, never CERTIFIED.
+// Bases: every built-in with a sample generator (sphere-2, sphere-3, clifford-torus-2,
+// clifford-torus-3, torus-of-revolution; so3 has none, see fixtures/manifolds), and huge- and
+// tiny-magnitude variants (the input scaled by 2^k, the spec scaled accordingly), which must
+// still certify. Variants that must keep the verdict: one-ulp moves of points of a valid input.
+// At least 1,000 mutants per run; the tally per kind is printed.
 #include <map>
+
+#include "exact/number_types.hpp"
 
 #include "exact/tangent_predicates.hpp"
 #include "support.hpp"
@@ -11,6 +18,8 @@ namespace {
 
 struct Base {
   std::string spec;
+  std::string shape;  // "sphere", "circles" (a product of circles) or "torus-of-revolution"
+  double scale;       // the manifold is the built-in scaled by this power of 2
   io::PointSet points;
   io::Complex complex;
   std::string claims;
@@ -20,7 +29,13 @@ struct Base {
 
 // Claims slightly weaker than the measured values (as a producer would state them).
 std::string claims_for(const Certificate& c) {
-  auto D = [](const nlohmann::json& s) { return std::stod(s.get<std::string>()); };
+  auto D = [](const nlohmann::json& s) {
+    const std::string t = s.is_string() ? s.get<std::string>() : s.dump();
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    EXPECT_TRUE(end != t.c_str() && std::isfinite(v)) << "not a finite number: " << t;
+    return v;
+  };
   double r2 = D(check(c, 10).margin["max_radius_squared"]["certified_upper_bound"]);
   double d = D(check(c, 2).margin["min_distance"]["certified_lower_bound"]);
   double prot = D(check(c, 6).margin["min_power_margin"]["certified_lower_bound"]);
@@ -52,25 +67,32 @@ std::set<Simplex> as_set(const io::Complex& K) {
   return s;
 }
 
-// Nearest point to M along the closed-form projection of the built-in (sphere, flat torus).
-void project(const std::string& spec, std::vector<double>& x) {
-  if (spec.find("sphere") != std::string::npos) {
+// Nearest point to M along the closed-form projection of the built-in (sphere, flat torus, torus
+// of revolution R = 2, r = 1 about x3), for M scaled by `scale`.
+void project(const std::string& shape, double scale, std::vector<double>& x) {
+  for (double& v : x) v /= scale;
+  if (shape == "sphere") {
     double s = 0;
     for (double v : x) s += v * v;
     for (double& v : x) v /= std::sqrt(s);
+  } else if (shape == "torus-of-revolution") {
+    const double rho = std::hypot(x[0], x[1]), h = std::hypot(rho - 2, x[2]);
+    const double rho2 = 2 + (rho - 2) / h;
+    x[0] *= rho2 / rho, x[1] *= rho2 / rho, x[2] /= h;
   } else {  // product of unit circles in coordinate pairs
     for (std::size_t k = 0; k + 1 < x.size(); k += 2) {
       double s = std::hypot(x[k], x[k + 1]);
       x[k] /= s, x[k + 1] /= s;
     }
   }
+  for (double& v : x) v *= scale;
 }
 
 // Moves point q of P onto the sphere of the cell s (centred on T_p) along M, to within rounding,
 // then by `ulps` ulps in coordinate `coord`. False when no such position was found. `sign` is the
 // exact sign of |c - q|^2 - R^2 after the move (computed here independently of the certifier).
-bool move_onto_sphere(const std::string& spec_source, io::PointSet& P, int p, const Simplex& s, int q, int coord, int ulps,
-                      int& sign) {
+bool move_onto_sphere(const Base& B, io::PointSet& P, int p, const Simplex& s, int q, int coord, int ulps, int& sign) {
+  const std::string& spec_source = B.spec;
   io::ManifoldSpec spec = io::read_spec(spec_source);
   exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
   exact::TangentSpace T(system, P.point(p));
@@ -94,7 +116,7 @@ bool move_onto_sphere(const std::string& spec_source, io::PointSet& P, int p, co
   auto at = [&](double t) {
     std::vector<double> x(N);
     for (int k = 0; k < N; ++k) x[k] = (1 - t) * from[k] + t * to[k];
-    project(spec_source, x);
+    project(B.shape, B.scale, x);
     return x;
   };
   auto f = [&](const std::vector<double>& x) {
@@ -120,6 +142,7 @@ bool move_onto_sphere(const std::string& spec_source, io::PointSet& P, int p, co
 
 struct Tally {
   std::map<std::string, std::array<int, 3>> by_kind;  // certified, refuted, undecided
+  int variants = 0, variants_same = 0;                // one-ulp moves of a valid input
 };
 
 void run_mutants(const Base& B, Tally& tally) {
@@ -154,6 +177,17 @@ void run_mutants(const Base& B, Tally& tally) {
     return K;
   };
   for (int i = 0; i < B.per_kind; ++i) {
+    {  // not a mutant: one to three coordinates moved by one ulp keep the verdict (CERTIFIED)
+      io::PointSet P = B.points;
+      for (int u = 0, moves = 1 + rng.below(3); u < moves; ++u) {
+        double& v = P.coordinates[rng.below(static_cast<int>(P.coordinates.size()))];
+        v = std::nextafter(v, rng.below(2) ? INFINITY : -INFINITY);
+      }
+      const Verdict v = run_case(dir, B.spec, P, B.complex, B.claims).overall();
+      EXPECT_EQ(v, Verdict::certified) << B.spec << ": a one-ulp move of a valid input changed the verdict";
+      ++tally.variants;
+      tally.variants_same += v == Verdict::certified;
+    }
     {  // drop a simplex
       auto K = K0;
       auto it = K.begin();
@@ -209,7 +243,7 @@ void run_mutants(const Base& B, Tally& tally) {
         int p = s[rng.below(static_cast<int>(s.size()))], q = neighbour_of(s);
         io::PointSet P = B.points;
         int sign = 2;
-        if (q < 0 || !move_onto_sphere(B.spec, P, p, s, q, rng.below(P.dimension), rng.below(3) - 1, sign)) continue;
+        if (q < 0 || !move_onto_sphere(B, P, p, s, q, rng.below(P.dimension), rng.below(3) - 1, sign)) continue;
         Certificate c = run_case(dir, B.spec, P, B.complex, B.claims);
         record("ulp-onto-sphere", c, "moved a point");
         // Cross-check with the independent exact sign: inside -> wrong star; on -> tie; outside ->
@@ -228,11 +262,12 @@ void run_mutants(const Base& B, Tally& tally) {
   }
 }
 
-Base make_base(const std::string& spec, const io::PointSet& P, int per_kind, std::uint64_t seed) {
+Base make_base(const std::string& spec, const std::string& shape, double scale, const io::PointSet& P, int per_kind,
+               std::uint64_t seed) {
   Audit A = audit(spec, P);
   EXPECT_TRUE(A.consistent && A.all_proven) << spec;
   TempDir dir("base");
-  Base B{spec, P, A.complex, "", per_kind, seed};
+  Base B{spec, shape, scale, P, A.complex, "", per_kind, seed};
   CertifyOptions o;
   o.manifold = spec;
   o.points = dir.file("points.txt");
@@ -243,8 +278,26 @@ Base make_base(const std::string& spec, const io::PointSet& P, int per_kind, std
   return B;
 }
 
+// DELCERT_TEST_SCALE (default 1) scales the number of mutants per kind; at 1 the suite makes
+// more than 1,000 mutants.
+double test_scale() {
+  const char* s = std::getenv("DELCERT_TEST_SCALE");
+  const double v = s && *s ? std::atof(s) : 1.0;
+  return v > 0 ? v : 1.0;
+}
+int per_kind(int base) { return std::max(1, static_cast<int>(std::lround(base * test_scale()))); }
+
+Tally& grand_total() {
+  static Tally t;
+  return t;
+}
+
 void report(const Tally& t) {
   int total = 0, killed = 0;
+  for (const auto& [kind, c] : t.by_kind)
+    for (int k = 0; k < 3; ++k) grand_total().by_kind[kind][k] += c[k];
+  grand_total().variants += t.variants;
+  grand_total().variants_same += t.variants_same;
   for (const auto& [kind, c] : t.by_kind) {
     if (kind[0] == ' ') {  // the exact position of moved points, not separate mutants
       std::printf("  %-16s %d\n", kind.c_str(), c[1]);
@@ -255,28 +308,117 @@ void report(const Tally& t) {
     total += c[0] + c[1] + c[2];
     killed += c[1];
   }
-  std::printf("  total            mutants %3d   refuted %3d\n", total, killed);
+  std::printf("  total            mutants %3d   refuted %3d   undecided %3d\n", total, killed, total - killed);
+  std::printf("  one-ulp variants %d, verdict kept %d\n", t.variants, t.variants_same);
+}
+
+// The grand total over all bases, printed at the end and required to reach 1,000 mutants.
+class PrintTotal : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::printf("[mutation] all bases:\n");
+    Tally t = grand_total();
+    grand_total() = Tally{};
+    report(t);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kTotalEnv = ::testing::AddGlobalTestEnvironment(new PrintTotal);
+
+int mutants(const Tally& t) {
+  int total = 0;
+  for (const auto& [k, c] : t.by_kind)
+    if (k[0] != ' ') total += c[0] + c[1] + c[2];
+  return total;
+}
+
+// A spec file for the built-in sphere or Clifford torus `name` scaled by 2^k (radius 2^k), with
+// the built-in's expected topology, a residual tolerance and a bounding box scaled alike.
+std::string scaled_spec(const TempDir& dir, const std::string& name, int k) {
+  const mpq_class s2 = k >= 0 ? mpq_class(mpz_class(1) << (2 * k)) : mpq_class(1) / mpq_class(mpz_class(1) << (-2 * k));
+  const std::string r2 = "(" + s2.get_str() + ")";
+  nlohmann::json j = nlohmann::json::parse(io::builtin_spec_text(name));
+  std::vector<std::string> eq;
+  if (name.rfind("sphere", 0) == 0) {
+    std::string e;
+    for (int i = 1; i <= j["ambient_dimension"].get<int>(); ++i) e += "x" + std::to_string(i) + "^2 + ";
+    eq.push_back(e + "(-1)*" + r2);
+  } else {  // clifford tori: products of circles
+    for (int i = 1; i < j["ambient_dimension"].get<int>(); i += 2)
+      eq.push_back("x" + std::to_string(i) + "^2 + x" + std::to_string(i + 1) + "^2 + (-1)*" + r2);
+  }
+  j["equations"] = eq;
+  j["name"] = name + "-scaled";
+  j.erase("reach");
+  j.erase("metric");
+  j.erase("parametrization");
+  const mpq_class b = mpq_class(5, 4) * (k >= 0 ? mpq_class(mpz_class(1) << k) : mpq_class(1) / mpq_class(mpz_class(1) << -k));
+  nlohmann::json box = nlohmann::json::array();
+  for (int i = 0; i < j["ambient_dimension"].get<int>(); ++i) box.push_back({mpq_class(-b).get_str(), b.get_str()});
+  j["bounding_box"] = box;
+  j["residual_tolerance"] = mpq_class(s2 / 1000000000).get_str();
+  const std::string path = dir.file(name + "-scaled-" + std::to_string(k) + ".json");
+  write_text(path, j.dump());
+  return path;
+}
+
+io::PointSet scaled_points(io::PointSet P, int k) {
+  for (double& v : P.coordinates) v = std::ldexp(v, k);
+  return P;
 }
 
 TEST(Mutation, SphereMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:sphere-2", fibonacci_sphere(90), 30, 101), t);
+  run_mutants(make_base("builtin:sphere-2", "sphere", 1, fibonacci_sphere(90), per_kind(70), 101), t);
   report(t);
-  int total = 0;
-  for (const auto& [k, c] : t.by_kind) total += c[0] + c[1] + c[2];
-  EXPECT_GE(total, 120);
+  EXPECT_GE(mutants(t), std::lround(300 * std::min(1.0, test_scale())));
 }
 
 TEST(Mutation, FlatTorusMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:clifford-torus-2", torus2_lattice(8, 10), 20, 202), t);
+  run_mutants(make_base("builtin:clifford-torus-2", "circles", 1, torus2_lattice(8, 10), per_kind(40), 202), t);
   report(t);
 }
 
 TEST(Mutation, ThreeSphereMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:sphere-3", spread_sphere(4, 70, 0.5, 13), 10, 303), t);
+  run_mutants(make_base("builtin:sphere-3", "sphere", 1, spread_sphere(4, 70, 0.5, 13), per_kind(30), 303), t);
   report(t);
+}
+
+TEST(Mutation, TorusOfRevolutionMutantsAreNeverCertified) {
+  Tally t;
+  run_mutants(make_base("builtin:torus-of-revolution", "torus-of-revolution", 1, torus_of_revolution(18, 8), per_kind(35), 404), t);
+  report(t);
+}
+
+TEST(Mutation, FlatThreeTorusMutantsAreNeverCertified) {
+  Tally t;
+  run_mutants(make_base("builtin:clifford-torus-3", "circles", 1, torus3_bcc(4), per_kind(8), 505), t);
+  report(t);
+}
+
+// Huge and tiny magnitudes: the same inputs scaled by 2^k (points exactly, spec and claims
+// accordingly) still certify, and their mutants never do.
+TEST(Mutation, ScaledInputMutantsAreNeverCertified) {
+  TempDir dir("scaled-specs");
+  Tally t;
+  for (int k : {-600, 450}) {
+    const std::string spec = scaled_spec(dir, "sphere-2", k);
+    run_mutants(make_base(spec, "sphere", std::ldexp(1.0, k), scaled_points(fibonacci_sphere(90), k), per_kind(12),
+                          606 + static_cast<std::uint64_t>(k + 1000)), t);
+  }
+  {
+    const int k = -300;
+    const std::string spec = scaled_spec(dir, "clifford-torus-2", k);
+    run_mutants(make_base(spec, "circles", std::ldexp(1.0, k), scaled_points(torus2_lattice(8, 10), k), per_kind(12), 707), t);
+  }
+  report(t);
+}
+
+// The total over the bases above (gtest runs the tests of a file in order).
+TEST(Mutation, AtLeastAThousandMutants) {
+  if (mutants(grand_total()) == 0) GTEST_SKIP() << "run alone: needs the other Mutation tests in the same process";
+  EXPECT_GE(mutants(grand_total()), std::lround(1000 * std::min(1.0, test_scale())));
 }
 
 }  // namespace
