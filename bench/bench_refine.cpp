@@ -1,4 +1,4 @@
-// The refiner against GUDHI's perturbation fix (DESIGN §7, issue 6), on the same starting points
+// The refiner against GUDHI's perturbation fix (docs/design.md §11, issue 6), on the same starting points
 // and the same tangent planes.
 //
 // For each case (a manifold and a number of points, sampled uniformly with respect to volume by

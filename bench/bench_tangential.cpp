@@ -1,4 +1,4 @@
-// The tangential complex, side by side with GUDHI 3.7's Tangential_complex (DESIGN §7).
+// The tangential complex, side by side with GUDHI 3.7's Tangential_complex (docs/design.md §11).
 //
 // Both sides get the same points (sample_manifold, seeded) and the same tangent planes
 // (Manifold::frame; GUDHI through set_tangent_planes), and the same thread count (ours:

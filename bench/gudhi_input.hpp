@@ -1,5 +1,5 @@
 // GUDHI 3.7's Tangential_complex as the benchmarks' peer, and the one conversion that gives it the
-// very points and tangent planes delcert uses (DESIGN §7: same input, same planes).
+// very points and tangent planes delcert uses (docs/design.md §11: same input, same planes).
 #pragma once
 
 #ifndef GUDHI_USE_TBB

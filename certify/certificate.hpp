@@ -1,4 +1,4 @@
-// The certificate (DESIGN §5): input hashes, conventions, one entry per check, filter
+// The certificate (docs/design.md §9, docs/certificate.md): input hashes, conventions, one entry per check, filter
 // statistics, times and the overall verdict, written as JSON ("delcert-certificate v1").
 // docs/certificate.md describes every field.
 #pragma once

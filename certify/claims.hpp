@@ -1,4 +1,4 @@
-// claims.json: what a producer promises about its output (DESIGN §5b). Each claim becomes a
+// claims.json: what a producer promises about its output (docs/design.md §9, docs/certificate.md). Each claim becomes a
 // check in the certificate. Every value is an exact rational written as a JSON string
 // ("0.05", "1/20", "2.5e-3") or a JSON integer; JSON floating-point numbers are refused
 // because they are already rounded to binary.

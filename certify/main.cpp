@@ -1,4 +1,4 @@
-// delcert-certify: the independent checker (DESIGN §1, §4, §5b).
+// delcert-certify: the independent checker (docs/design.md §1, §5, §9).
 //
 //   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--claims CLAIMS.json]
 //                   [--out CERTIFICATE.json] [--threads T] [--no-times]

@@ -145,7 +145,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                            "point " + std::to_string(idx) +
                                ": no point of M could be certified near it (searched up to about " +
                                num(d.searched_radius) + " from it: " + d.failure +
-                               "); the spec's Jacobian may be rank-deficient on M (DESIGN §3 requires full rank "
+                               "); the spec's Jacobian may be rank-deficient on M (docs/design.md §2 requires full rank "
                                "N - m on M, e.g. write x1^2 + x2^2 + x3^2 - 1, not its square) or the point is "
                                "too far from M; fix the spec or project the point onto M");
     distance[idx] = d.distance_upper;

@@ -1,6 +1,6 @@
 // Checks 3, 6 and the eps claim at one sample point p: the tangential star of p, exactly.
 //
-// Setting (DESIGN §2-§3). T_p = p + ker J_F(p) at p's exact coordinates, with the exact
+// Setting (docs/design.md §2, §3.2). T_p = p + ker J_F(p) at p's exact coordinates, with the exact
 // rational basis U of exact/tangent_space.hpp. A cell s = {p, v1..vm} has a centre c in T_p at
 // equal ambient distance R = R_p(s) from its vertices; s is in star(p) iff its ball B(c, R)
 // contains no sample point (the regular triangulation of the weighted projections, exactly).

@@ -26,7 +26,7 @@
 //      interval of width sum_j |C_ij| w_j. So the w-weighted max-norm of C is < 1, its spectral
 //      radius is < 1, Y M = I - C is nonsingular, hence M = J_F(x) A^T is nonsingular and
 //      J_F(x) has rank k at every x in X. X contains x*, so M is a smooth m-manifold near x*
-//      (implicit function theorem), which is what DESIGN §3 requires.
+//      (implicit function theorem), which is what docs/design.md §2 requires.
 //   5. With a selector, s > 0 is checked on the interval hull of p + A^T R (which holds x*), so
 //      x* is on the selected component: x* is a point of M.
 //

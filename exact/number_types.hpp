@@ -1,7 +1,7 @@
 // Exact numbers at the interface of exact/: GMP rationals (mpq_class) and the helpers that move
 // between them and doubles without losing anything.
 //
-// Conventions (DESIGN §3): an input coordinate is a finite IEEE double and means the exact
+// Conventions (docs/design.md §2): an input coordinate is a finite IEEE double and means the exact
 // rational it represents, a dyadic number m * 2^e. Thresholds (delta^2, Gamma, epsilon^2) are
 // arbitrary rationals, parsed exactly from decimal text with parse_rational().
 #pragma once

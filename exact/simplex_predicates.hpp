@@ -20,7 +20,7 @@ namespace delcert::exact {
 
 inline constexpr int kMaxThicknessSimplexDimension = 7;  // largest j accepted by the thickness test
 
-// ---- Thickness (DESIGN §2: Upsilon(t) = min_p D(p, t) / (j Delta(t)), Upsilon = 1 for j = 0) ----
+// ---- Thickness (docs/design.md §3.1: Upsilon(t) = min_p D(p, t) / (j Delta(t)), Upsilon = 1 for j = 0) ----
 //
 // sign(Upsilon(t) - Gamma) with Gamma = sqrt(gamma_squared) >= 0, for the j-simplex t given by
 // its j + 1 vertices. Decided through squares and Gram determinants (see detail/kernels.hpp):

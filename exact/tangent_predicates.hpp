@@ -1,4 +1,4 @@
-// Filtered exact predicates in a tangent space T_p (DESIGN §2, issue 3 predicates 1-3).
+// Filtered exact predicates in a tangent space T_p (docs/design.md §3.2, issue 3 predicates 1-3).
 //
 // Setting. p is a sample point, T_p = p + span U its exact tangent flat (TangentSpace). A
 // nearby point q is projected to q' = pi_p(q) with weight w(q) = -|q - q'|^2, so that for x in

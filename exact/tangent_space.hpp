@@ -1,4 +1,4 @@
-// Exact tangent spaces of an implicit manifold (DESIGN §3).
+// Exact tangent spaces of an implicit manifold (docs/design.md §2).
 //
 // M = { x in R^N : F(x) = 0 } with F = (F_1..F_k), k = N - m, polynomials with rational
 // coefficients. At a sample point p (doubles, taken as exact rationals) the tangent flat is
@@ -85,7 +85,7 @@ class TangentSpace {
   const std::vector<int>& free_columns() const;   // the other m columns, increasing
 
   // Exact orthogonal projection of x onto T_p: p + U G^{-1} U^T (x - p) (N rationals), and the
-  // exact weight w(x) = -|x - pi_p(x)|^2 of the tangential star (DESIGN §2). Slow (rational
+  // exact weight w(x) = -|x - pi_p(x)|^2 of the tangential star (docs/design.md §3.2). Slow (rational
   // linear algebra); meant for reports, tests and witnesses.
   std::vector<mpq_class> project_exact(std::span<const double> x) const;
   mpq_class weight_exact(std::span<const double> x) const;

@@ -1,4 +1,4 @@
-// delcert: the producer's command-line tool (DESIGN §5b). One file per subcommand.
+// delcert: the producer's command-line tool (docs/design.md §9). One file per subcommand.
 // Exit status: 0 success, 2 bad input or usage, 4 refinement did not converge.
 #include <cstdio>
 #include <iostream>

@@ -2,7 +2,7 @@
 //                [--alpha A] [--beta B] [--delta0 D] [--seed S] [--threads T] --out DIR
 //
 // Refines a sample of M until its tangential Delaunay complex is thick, protected and (in the
-// practical mode) consistent (paper §4, DESIGN §2 "Refinement"; see core/refine/refiner.hpp for
+// practical mode) consistent (paper §4, docs/design.md §3.5; see docs/refinement.md for
 // the rules). Writes DIR/points.txt (the input points first, in order), DIR/complex.txt,
 // DIR/report.json and DIR/claims.json. Exit status 0 when converged, 4 when a cap stopped the
 // run (the partial output is written and report.json says "converged": false), 2 on bad input.

@@ -1,6 +1,6 @@
 // delcert tangential --manifold SPEC --points POINTS --out COMPLEX [--stats STATS.json] [--threads T]
 //
-// Builds the tangential Delaunay complex of the points (DESIGN §2) with T_p = p + ker J_F(p),
+// Builds the tangential Delaunay complex of the points (docs/design.md §3.2) with T_p = p + ker J_F(p),
 // writes the union of the stars (maximal simplices, sorted) and, on request, a JSON summary.
 #include <unistd.h>
 

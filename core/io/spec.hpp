@@ -1,5 +1,5 @@
 // Manifold specs (JSON). A spec describes M as the zero set of a polynomial system
-// F: R^N -> R^(N-m) with exact rational coefficients (DESIGN §3, §5).
+// F: R^N -> R^(N-m) with exact rational coefficients (docs/design.md §2, §9).
 //
 //   {
 //     "format": "delcert-manifold v1",

@@ -1,8 +1,8 @@
-// The manifold model used by the producer, in double precision (DESIGN §2, §3).
+// The manifold model used by the producer, in double precision (docs/design.md §4.3, §2).
 //
 // M = { x in R^N : F(x) = 0 } (plus selector > 0 when the spec has one), with F the spec's
 // N - m polynomials. At a point p the tangent flat is T_p = p + ker J_F(p), evaluated at p
-// itself even when p is only within rounding of M (DESIGN §3).
+// itself even when p is only within rounding of M (docs/design.md §2).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// The quasi-cospherical complex cosph^{δ0}(p) (paper §4.1.2 eq. (cosph), DESIGN §2).
+// The quasi-cospherical complex cosph^{δ0}(p) (paper §4.1.2 eq. (cosph), docs/design.md §3.4).
 //
 // q * σ belongs to cosph^{δ0}(p) when σ ∈ star(p), R_p(σ) < ε, σ is Γ0-good, q ∉ σ and
 //   0 <= ||c_p(σ) - q||^2 - R_p(σ)^2 <= δ0^2 L(q * σ)^2,

@@ -1,4 +1,4 @@
-// What `delcert refine` writes (DESIGN §5b): DIR/points.txt, DIR/complex.txt, DIR/report.json
+// What `delcert refine` writes (docs/design.md §9): DIR/points.txt, DIR/complex.txt, DIR/report.json
 // and DIR/claims.json, each atomically.
 //
 // claims.json ("delcert-claims v1", read by delcert-certify) holds only what the output keeps,

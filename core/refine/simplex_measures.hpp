@@ -1,4 +1,4 @@
-// Simplex measures in double precision (DESIGN §2 "Simplex measures", paper §2.2).
+// Simplex measures in double precision (docs/design.md §3.1, paper §2.2).
 //
 // For a j-simplex s = [v0..vj]: Δ(s) longest edge, L(s) shortest edge, the altitude D(vi, s)
 // (distance from vi to the affine hull of the opposite face), thickness

@@ -1,4 +1,4 @@
-// Elementary weight functions (paper §4.1.1, DESIGN §2).
+// Elementary weight functions (paper §4.1.1, docs/design.md §3.4).
 //
 // An elementary weight function ω on τ = [v0..vk] gives one vertex v_i a weight ω(v_i) in
 // [0, δ0 L(τ)] and every other vertex 0. C(τ, ω) is the point of aff(τ) with

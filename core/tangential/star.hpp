@@ -1,4 +1,4 @@
-// Tangential stars (DESIGN §2 "Tangential star", paper §3.1.2).
+// Tangential stars (docs/design.md §3.2, paper §3.1.2).
 //
 // For p in P, every other point q is projected onto T_p, q' = p + T T^T (q - p), with weight
 // w(q) = -||q - q'||^2, so that the power of x in T_p to q' is ||x - q||^2. star(p) is the set of
@@ -20,7 +20,7 @@
 // "Exact" means exact for the rounded local input. The certifier's T_p is ker J_F(p) in
 // rationals, which differs from the double basis by rounding, so a configuration within ~1e-15
 // (relative) of a tie may be decided differently there; such a simplex is not protected anyway
-// and the certifier reports it (DESIGN §3).
+// and the certifier reports it (docs/design.md §2).
 //
 // Every star depends only on (points, planes, p): the output is the same for every thread
 // count, batch size and processing order, bit for bit.
@@ -94,7 +94,7 @@ StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes,
                         std::span<const std::size_t> which, std::vector<Star>& stars, const StarOptions& options = {});
 
 // The power centre of the simplex `cell` (sorted global indices, containing p) in T_p, in
-// ambient coordinates, as computed for star(p) (bit-identical; DESIGN §2). Returns false when
+// ambient coordinates, as computed for star(p) (bit-identical; docs/design.md §3.2). Returns false when
 // the projected simplex is degenerate (no unique centre).
 bool power_centre(const io::PointSet& points, const TangentPlanes& planes, std::size_t p, std::span<const int> cell,
                   std::span<double> centre, double* radius2);

@@ -1,4 +1,4 @@
-// Tangent planes of a point set: per point an orthonormal basis of T_p (DESIGN §2, §3).
+// Tangent planes of a point set: per point an orthonormal basis of T_p (docs/design.md §2, §4.6).
 //
 // The producer takes T_p = p + ker J_F(p) from Manifold::frame; callers that already have
 // bases (a benchmark feeding the very same planes to GUDHI, a test with hand-made planes) pass

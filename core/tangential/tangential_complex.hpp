@@ -1,5 +1,5 @@
 // The tangential Delaunay complex Del_TM(P): one star per point, their union, and consistency
-// (DESIGN §2, paper §3.1.2). Built once, then updated star by star as the refiner inserts points.
+// (docs/design.md §3.2, §6.4, paper §3.1.2). Built once, then updated star by star as the refiner inserts points.
 //
 //   TangentialComplex tc(points, planes, options);          // every star (options.threads workers)
 //   points.push_back(x); extend_tangent_planes(manifold, points, planes);

@@ -132,7 +132,7 @@ NT determinant(const NT* a) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Tangential predicates (DESIGN §2), in chart coordinates at a point p with basis U of T_p - p
+// Tangential predicates (docs/design.md §3.2), in chart coordinates at a point p with basis U of T_p - p
 // (N x m, any basis, not orthonormal). The chart row of an ambient point x is
 //   r(x) = (b(x), s(x)),  b(x) = U^T (x - p) in R^m,  s(x) = |x - p|^2,
 // so r(p) = 0. For c = p + U z in T_p: |c - x|^2 = s(x) - 2 b(x).z + |U z|^2.
@@ -200,7 +200,7 @@ NT power_value(const NT* coef, const NT& k0, const NT* rx, bool origin_ref) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Thickness (DESIGN §2, paper §2.2) via Gram determinants of edge vectors.
+// Thickness (docs/design.md §3.1, paper §2.2) via Gram determinants of edge vectors.
 // For a j-simplex t = (v0..vj) with squared-distance matrix d, the Gram matrix of the edges
 // from a base vertex b satisfies 2 G_ik = d_bi + d_bk - d_ik (polarisation), so
 //   det(2G(t)) = 2^j det G(t),   det(2G(t_l)) = 2^(j-1) det G(t_l)  (t_l: facet opposite v_l),

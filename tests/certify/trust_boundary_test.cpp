@@ -1,4 +1,4 @@
-// The trust boundary (DESIGN §4): certify/ includes exact/, the plain file readers of core/io,
+// The trust boundary (docs/design.md §5): certify/ includes exact/, the plain file readers of core/io,
 // CGAL number types, Eigen, nlohmann json, CLI11 and the standard library, nothing else of ours
 // (no core/manifold, core/spatial, core/sampling, core/tangential, no CGAL kernel or
 // triangulation), and its target never links the producer.

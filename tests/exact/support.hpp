@@ -1,6 +1,6 @@
 // Test helpers for exact/: a seeded generator, the test manifolds, and brute-force mpq
 // reference implementations written independently of exact/'s division-free formulas
-// (projections, weights and linear solves, as the definitions in DESIGN §2 read).
+// (projections, weights and linear solves, as the definitions in docs/design.md §3.2 read).
 #pragma once
 
 #include <gmpxx.h>
@@ -169,7 +169,7 @@ inline std::vector<Q> rational(const double* x, int n) {
   return out;
 }
 
-// ---- reference tangential geometry by projections (DESIGN §2 as written) ----
+// ---- reference tangential geometry by projections (docs/design.md §3.2 as written) ----
 
 // Coordinates z of the orthogonal projection of x onto T_p in the basis U: x' = p + U z,
 // z = G^{-1} U^T (x - p); and the squared normal distance n(x) = |x - x'|^2 = -w(x).

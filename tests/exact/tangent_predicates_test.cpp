@@ -44,7 +44,7 @@ int check_cell(const TangentChart& chart, const std::vector<int>& verts, const s
   EXPECT_EQ(zc.has_value(), ref_orient != 0);
   if (zc) {
     // centre_exact is p + U zc, and R^2 (ambient) equals the weighted power of the projections
-    // (the claim of DESIGN §2 that CGAL's weights -|q - q'|^2 give ambient distances).
+    // (the claim of docs/design.md §3.2 that CGAL's weights -|q - q'|^2 give ambient distances).
     auto c = cell.centre_exact();
     const auto p = T.point();
     for (int i = 0; i < T.ambient_dimension(); ++i) {

@@ -1,5 +1,5 @@
 // End to end: the refiner's output must be CERTIFIED by the independent certifier, with the
-// refiner's own claims (DESIGN §1, issue 6: "CI must run delcert refine then delcert-certify
+// refiner's own claims (docs/design.md §1, issue 6: "CI must run delcert refine then delcert-certify
 // --claims on small fixtures and fail on anything but CERTIFIED").
 #include <gtest/gtest.h>
 
