@@ -112,7 +112,11 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
   auto line_of = [&](std::size_t i) { return i < lines.size() ? lines[i] : 0L; };
   std::vector<mpq_class> worst(n);  // max_i |F_i(p)| per point, exact
   std::vector<double> distance(n);  // certified upper bound on the distance from p to M
-  const exact::ManifoldDistance to_M(spec.equations, N, spec.selector ? &*spec.selector : nullptr);
+  // The distance test runs at the scale of the coordinates (exact/manifold_distance.hpp).
+  double magnitude = 0;
+  for (double c : points.coordinates) magnitude = std::max(magnitude, std::abs(c));
+  const int scale_exponent = magnitude > 0 && std::isfinite(magnitude) ? std::ilogb(magnitude) : 0;
+  const exact::ManifoldDistance to_M(spec.equations, N, spec.selector ? &*spec.selector : nullptr, scale_exponent);
   parallel_for(n, threads, [&](std::size_t idx, int) {
     std::vector<mpq_class> x = exact::to_rational(points.point(idx));
     for (int i = 0; i < k; ++i) {

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@ using detail::IA;
 
 struct ManifoldDistance::Impl {
   int N = 0, k = 0;
+  int scale_exponent = 0;  // the equations below are in y = x / 2^scale_exponent
   std::vector<Polynomial> f, df;  // df: k x N row-major, d f_i / d x_v
   std::vector<std::vector<Interval>> f_coef, df_coef;
   std::vector<DoublePolynomial> f_d, df_d;
@@ -138,10 +140,52 @@ Box to_box(const std::vector<IA>& x) {
   return b;
 }
 
+// q(y) = p(2^e y) / 2^s, exactly: a term c x^a becomes c 2^(e|a|) / 2^s y^a, with 2^s within a
+// factor 2 of the largest coefficient after the substitution (so q's coefficients are near 1).
+Polynomial rescaled(const Polynomial& p, int e, int N) {
+  if (e == 0 || p.is_zero() || p.num_variables() != N) return p;  // (a wrong size is refused by the caller)
+  std::vector<mpq_class> c;
+  long s = LONG_MIN;
+  for (const auto& t : p.terms()) {
+    long deg = 0;
+    for (auto x : t.monomial.exponents) deg += static_cast<long>(x);
+    mpq_class v;
+    const long shift = static_cast<long>(e) * deg;
+    if (shift >= 0) mpq_mul_2exp(v.get_mpq_t(), t.coefficient.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+    else mpq_div_2exp(v.get_mpq_t(), t.coefficient.get_mpq_t(), static_cast<mp_bitcnt_t>(-shift));
+    s = std::max(s, static_cast<long>(mpz_sizeinbase(v.get_num_mpz_t(), 2)) -
+                        static_cast<long>(mpz_sizeinbase(v.get_den_mpz_t(), 2)));
+    c.push_back(std::move(v));
+  }
+  Polynomial out(N);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (s >= 0) mpq_div_2exp(c[i].get_mpq_t(), c[i].get_mpq_t(), static_cast<mp_bitcnt_t>(s));
+    else mpq_mul_2exp(c[i].get_mpq_t(), c[i].get_mpq_t(), static_cast<mp_bitcnt_t>(-s));
+    Polynomial term = Polynomial::constant(c[i], N);
+    const auto& a = p.terms()[i].monomial.exponents;
+    for (std::size_t v = 0; v < a.size(); ++v)
+      for (std::uint32_t j = 0; j < a[v]; ++j) term = term * Polynomial::variable(static_cast<int>(v), N);
+    out = out + term;
+  }
+  return out;
+}
+
+// Multiplies every bound by the exact 2^e, rounding outward (the caller holds upward rounding).
+Interval scale_out(const Interval& x, double two_e) { return detail::from_ia(IA(x.lo, x.hi) * IA(two_e)); }
+
 }  // namespace
 
-ManifoldDistance::ManifoldDistance(const std::vector<Polynomial>& equations, int N, const Polynomial* selector) {
+ManifoldDistance::ManifoldDistance(const std::vector<Polynomial>& given, int N, const Polynomial* given_selector,
+                                   int scale_exponent) {
+  if (scale_exponent < -1074 || scale_exponent > 1023)
+    throw std::invalid_argument("manifold distance: scale exponent outside the double range");
+  std::vector<Polynomial> equations;
+  for (const auto& e : given) equations.push_back(rescaled(e, scale_exponent, N));
+  std::optional<Polynomial> scaled_selector;
+  if (given_selector) scaled_selector = rescaled(*given_selector, scale_exponent, N);
+  const Polynomial* selector = scaled_selector ? &*scaled_selector : nullptr;
   auto impl = std::make_shared<Impl>();
+  impl->scale_exponent = scale_exponent;
   const int k = static_cast<int>(equations.size());
   if (N < 1 || k < 1 || k > N) throw std::invalid_argument("manifold distance: need 1 <= #equations <= N");
   impl->N = N;
@@ -171,7 +215,36 @@ ManifoldDistance::ManifoldDistance(const std::vector<Polynomial>& equations, int
   impl_ = std::move(impl);
 }
 
-DistanceCertificate ManifoldDistance::certify(std::span<const double> p) const {
+DistanceCertificate ManifoldDistance::certify(std::span<const double> x) const {
+  const int e = impl_->scale_exponent;
+  if (e == 0) return certify_scaled(x);
+  if (static_cast<int>(x.size()) != impl_->N) throw std::invalid_argument("manifold distance: point of the wrong dimension");
+  std::vector<double> y(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    y[i] = std::ldexp(x[i], -e);  // exact unless it underflows: checked by the round trip
+    if (std::isfinite(x[i]) && std::ldexp(y[i], e) != x[i]) {
+      DistanceCertificate out;
+      out.failure = "coordinate " + std::to_string(i) + " loses bits when scaled by 2^" + std::to_string(-e) +
+                    " (the points' coordinates span more than the double exponent range)";
+      return out;
+    }
+  }
+  DistanceCertificate d = certify_scaled(y);
+  detail::EnsureUpward up;
+  const double two_e = std::ldexp(1.0, e);  // exact: -1074 <= e <= 1023
+  d.searched_radius = (IA(d.searched_radius) * IA(two_e)).sup();
+  if (!d.certified) return d;
+  d.distance_upper = (IA(d.distance_upper) * IA(two_e)).sup();
+  for (auto& b : d.zero_box) b = scale_out(b, two_e);
+  for (auto& b : d.region) b = scale_out(b, two_e);
+  if (!std::isfinite(d.distance_upper)) {
+    d.certified = false;
+    d.failure = "the distance bound overflows";
+  }
+  return d;
+}
+
+DistanceCertificate ManifoldDistance::certify_scaled(std::span<const double> p) const {
   const Impl& S = *impl_;
   const int N = S.N, k = S.k;
   DistanceCertificate out;
@@ -185,10 +258,14 @@ DistanceCertificate ManifoldDistance::certify(std::span<const double> p) const {
 
   // ---- 1. Floating point (round to nearest): normal directions A and a Newton guess t~. -----
   Eigen::VectorXd t = Eigen::VectorXd::Zero(k);
-  double scale = 1;
+  // The size of the point's coordinates sets the initial box and the stopping tests (relative, so
+  // that the test works at every magnitude: inputs scaled by 2^-600 or 2^450 behave alike); 1 for
+  // the origin. These only steer the search; correctness never depends on them.
+  double scale = 0;
   {
     NearestRounding nearest;
     for (double c : p) scale = std::max(scale, std::abs(c));
+    if (!(scale > 0)) scale = 1;
     auto jacobian_at = [&](const std::vector<double>& x, Eigen::MatrixXd& J, Eigen::VectorXd& g) {
       for (int i = 0; i < k; ++i) {
         g(i) = S.f_d[i](x);

@@ -71,7 +71,15 @@ class ManifoldDistance {
   // `equations`: the k = N - m polynomials of F over N variables (1 <= k <= N); `selector`: null
   // or a polynomial over N variables that must be > 0 on M. Throws std::invalid_argument on
   // inconsistent sizes. Immutable, cheap to copy, thread-safe to share.
-  ManifoldDistance(const std::vector<Polynomial>& equations, int ambient_dimension, const Polynomial* selector = nullptr);
+  //
+  // `scale_exponent` e: the test runs in the coordinates y = x / 2^e, on the equations
+  // F(2^e y) divided by a power of two near their largest coefficient (neither changes the zero
+  // set, the selected component or the rank of the Jacobian), and the results are scaled back by
+  // the exact factor 2^e, rounded outward. Choose 2^e near the size of the points' coordinates
+  // (sanity.cpp takes the largest one): at 2^-600, say, F itself is far below the double range
+  // and no interval test could succeed without it. e = 0 keeps the equations as they are.
+  ManifoldDistance(const std::vector<Polynomial>& equations, int ambient_dimension, const Polynomial* selector = nullptr,
+                   int scale_exponent = 0);
 
   // p: N doubles (taken exactly). Never throws for finite or non-finite p: failures are reported
   // in the result. Sets (and restores) the rounding mode itself.
@@ -80,6 +88,7 @@ class ManifoldDistance {
   struct Impl;
 
  private:
+  DistanceCertificate certify_scaled(std::span<const double> y) const;  // in the scaled coordinates
   std::shared_ptr<const Impl> impl_;
 };
 

@@ -124,5 +124,33 @@ TEST(ManifoldDistance, CliffordTorusTwoEquations) {
   EXPECT_LE(d1.distance_upper, e * (1 + 1e-9));
 }
 
+// Spheres of radius 2^k for k far from 0: at 2^-600 the equation's values (about 2^-1200) are
+// below the double range, so the test needs the scaled coordinates; the bound must contain the
+// exact distance | |p| - 2^k | and be at rounding level relative to 2^k.
+TEST(ManifoldDistance, WorksAtEveryScaleWithTheScaleExponent) {
+  for (int k : {-600, -300, 300, 450}) {
+    const mpq_class r2 = k >= 0 ? mpq_class(mpz_class(1) << (2 * k)) : mpq_class(1) / mpq_class(mpz_class(1) << (-2 * k));
+    const std::string eq = "x1^2 + x2^2 + x3^2 - (" + r2.get_str() + ")";
+    ManifoldDistance scaled(parse_all({eq}, 3), 3, nullptr, k);
+    const double t = std::ldexp(1.0, k);
+    for (std::array<double, 3> p : {std::array<double, 3>{t, 0, 0}, {0.6 * t, 0.8 * t, 0}, {0, -0.8 * t, std::nextafter(0.6 * t, 0.0)}}) {
+      DistanceCertificate d = scaled.certify(p);
+      ASSERT_TRUE(d.certified) << "k = " << k << ": " << d.failure;
+      mpq_class s = 0;
+      for (double c : p) s += to_rational(c) * to_rational(c);
+      const Enclosure exact_distance = sqrt(Enclosure(s)) - sqrt(Enclosure(r2));
+      EXPECT_GE(d.distance_upper, std::max(std::abs(exact_distance.lower()), std::abs(exact_distance.upper())) * (1 - 1e-9)) << k;
+      EXPECT_LE(d.distance_upper, t * 1e-14) << k;
+    }
+  }
+  // Without the scale exponent the tiny sphere cannot be certified (never certified wrongly).
+  ManifoldDistance unscaled(parse_all({"x1^2 + x2^2 + x3^2 - (" +
+                                       mpq_class(mpq_class(1) / mpq_class(mpz_class(1) << 1200)).get_str() + ")"},
+                                      3),
+                            3);
+  const double t = std::ldexp(1.0, -600);
+  EXPECT_FALSE(unscaled.certify(std::array<double, 3>{t, 0, 0}).certified);
+}
+
 }  // namespace
 }  // namespace delcert::exact
