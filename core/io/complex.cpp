@@ -1,6 +1,7 @@
 #include "core/io/complex.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -66,6 +67,11 @@ ComplexFile parse_complex(const std::string& text, const std::string& file) {
                        "expected a line 'NUM_VERTICES NUM_SIMPLICES'");
     long nv = parse_count(lines[1].tokens[0], file, lines[1].number, "the vertex count");
     long ns = parse_count(lines[1].tokens[1], file, lines[1].number, "the simplex count");
+    // Vertex indices are ints everywhere downstream: a larger count would let an index wrap.
+    if (nv > std::numeric_limits<int>::max())
+      throw InputError(file, lines[1].number,
+                       "the vertex count " + std::to_string(nv) + " exceeds " +
+                           std::to_string(std::numeric_limits<int>::max()) + ", the largest supported");
     out.complex.num_vertices = static_cast<std::size_t>(nv);
     if (static_cast<long>(lines.size()) - 2 != ns)
       throw InputError(file, lines.back().number,

@@ -67,5 +67,19 @@ TEST(Complex, SimplexSizeLimit) {
   EXPECT_EQ(parse_complex(text, "mem").complex.simplices.at(0).size(), kMaxSimplexVertices);
 }
 
+// Vertex indices are ints downstream: a vertex count beyond INT_MAX is refused, so that an index
+// such as 2147483648 can never wrap to a negative one (found by fuzzing, fuzz/regressions/complex).
+TEST(Complex, VertexCountBeyondIntIsRefused) {
+  try {
+    parse_complex("delcert-complex v1\n3000000000 1\n0 1 2147483648\n", "mem");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("exceeds 2147483647"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_complex("delcert-complex v1\n2147483647 1\n0 1 2147483646\n", "mem").complex.simplices.at(0).at(2),
+            2147483646);
+}
+
 }  // namespace
 }  // namespace delcert::io
