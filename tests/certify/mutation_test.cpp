@@ -1,6 +1,9 @@
 // Mutation suite (soundness): valid certified inputs are mutated in seeded, random ways - drop a
 // simplex, add a simplex, replace a vertex, swap two points, move a point onto a Delaunay sphere
 // to within one ulp - and every mutant must come back REFUTED or UNDECIDED, never CERTIFIED.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <map>
 
 #include "exact/tangent_predicates.hpp"
@@ -228,7 +231,17 @@ void run_mutants(const Base& B, Tally& tally) {
   }
 }
 
+// The number of mutants per kind, scaled by DELCERT_TEST_SCALE (scripts/sanitize.sh runs the
+// suite at 0.1: instrumented code is several times slower); at least one of each kind.
+int scaled(int per_kind) {
+  const char* s = std::getenv("DELCERT_TEST_SCALE");
+  double f = s ? std::strtod(s, nullptr) : 1.0;
+  if (!(f > 0 && f <= 1e3)) f = 1.0;
+  return std::max(1, static_cast<int>(std::lround(per_kind * f)));
+}
+
 Base make_base(const std::string& spec, const io::PointSet& P, int per_kind, std::uint64_t seed) {
+  per_kind = scaled(per_kind);
   Audit A = audit(spec, P);
   EXPECT_TRUE(A.consistent && A.all_proven) << spec;
   TempDir dir("base");
@@ -260,11 +273,13 @@ void report(const Tally& t) {
 
 TEST(Mutation, SphereMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:sphere-2", fibonacci_sphere(90), 30, 101), t);
+  Base B = make_base("builtin:sphere-2", fibonacci_sphere(90), 30, 101);
+  run_mutants(B, t);
   report(t);
   int total = 0;
   for (const auto& [k, c] : t.by_kind) total += c[0] + c[1] + c[2];
-  EXPECT_GE(total, 120);
+  // At full size 120 of the up to 150 mutants apply; scaled down, at least every drop does.
+  EXPECT_GE(total, B.per_kind < 30 ? B.per_kind : 120);
 }
 
 TEST(Mutation, FlatTorusMutantsAreNeverCertified) {
