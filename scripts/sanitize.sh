@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Builds the whole test suite with GCC's AddressSanitizer and UndefinedBehaviorSanitizer into
+# build-asan/ and runs it: any out-of-bounds access, use after free, leak, signed overflow,
+# invalid shift, misaligned or null access, ... aborts the test that triggers it.
+# Tests that honour DELCERT_TEST_SCALE run at a tenth of their size here (instrumented code is
+# several times slower); override with DELCERT_TEST_SCALE=1 bash scripts/sanitize.sh.
+# Extra arguments go to cmake's configure step.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+# Warnings as errors is scripts/test.sh's job (GCC warns differently with instrumentation).
+werror=()
+if [ -n "${DELCERT_WERROR:-}" ]; then werror=(-DDELCERT_WERROR="$DELCERT_WERROR"); fi
+# RelWithDebInfo at -O1: line numbers in the reports, and fast enough to run the suite.
+CC=gcc CXX=g++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DDELCERT_BUILD_BENCH=OFF -DDELCERT_BUILD_TESTS=ON "${werror[@]}" "$@" >/dev/null
+cmake --build build-asan -j "${JOBS:-$(nproc)}"
+export DELCERT_TEST_SCALE=${DELCERT_TEST_SCALE:-0.1}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+cd build-asan
+ctest --output-on-failure -j "${JOBS:-$(nproc)}"
