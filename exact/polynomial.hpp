@@ -41,7 +41,11 @@ mpq_class parse_rational(std::string_view text);
 // above what a manifold spec needs (the built-in specs have degree <= 4 and <= 30 terms).
 struct PolynomialLimits {
   static constexpr std::size_t max_text_length = 100000;     // characters of the whole expression
-  static constexpr std::size_t max_literal_length = 1000;    // characters of one number literal
+  // Characters of one number literal. At least the longest literal the writer (to_string) prints
+  // for a coefficient within max_coefficient_bits, so that every polynomial's own text reads back:
+  // a decimal expansion n / (2^a 5^b) has at most max(a, b) + 0.31 bits(n) + 0.7 max(a, b) + 3
+  // characters, below 1.7 * 20,000 + 3 (a 1,000 limit failed on fuzzed input, fuzz/regressions).
+  static constexpr std::size_t max_literal_length = 50000;
   static constexpr int max_degree = 256;                     // total degree of every sub-expression;
                                                              // also the largest exponent after '^'
   static constexpr std::size_t max_terms = 10000;            // terms of every sub-expression
