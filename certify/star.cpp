@@ -810,7 +810,9 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
   // delta-protection: |c' - q'| > r + delta  <=>  e = |c' - q'|^2 - r^2 - delta^2 > 0 and e^2 > 4 delta^2 r^2.
   int prot_fail = 0;
   const T delta2 = delta * delta, four_delta2_r2 = T(4) * delta * delta * r2;  // the same operations as per point
-  IA reach2(INFINITY);  // points projected beyond 2r + delta from p are certainly protected
+  // Points projected beyond 2r + delta from p are certainly protected (interval instantiation
+  // only; the exact one tests every point). Not IA(INFINITY): a point interval must be finite.
+  IA reach2(0);
   if constexpr (std::is_same_v<T, IA>) reach2 = CGAL::square(IA(2) * CGAL::sqrt(r2) + delta);
   for (int k = 1; k < L.size(); ++k) {
     const int q = by_t.empty() ? k : by_t[k - 1];
