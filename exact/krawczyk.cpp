@@ -9,6 +9,7 @@
 #include <string>
 
 #include "exact/detail/cgal_number_types.hpp"
+#include "exact/detail/interval_polynomial.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::exact {
@@ -23,23 +24,9 @@ struct SquareSystem::Impl {
   std::vector<std::vector<Interval>> df_coef;
 };
 
-namespace {
-
-std::vector<Interval> coefficient_enclosures(const Polynomial& p) {
-  std::vector<Interval> out;
-  for (const auto& t : p.terms()) out.push_back(enclose(t.coefficient));
-  return out;
-}
-
-// Interval evaluation of p over the box x; the caller holds upward rounding.
-IA evaluate(const Polynomial& p, const std::vector<Interval>& coef, std::span<const IA> x) {
-  return p.evaluate_with<IA>(x, [&](std::size_t i) { return detail::to_ia(coef[i]); });
-}
-
-bool finite(const IA& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); }
-
-
-}  // namespace
+using detail::coefficient_enclosures;
+using detail::evaluate;
+using detail::finite;
 
 SquareSystem::SquareSystem(std::vector<Polynomial> equations) {
   auto impl = std::make_shared<Impl>();

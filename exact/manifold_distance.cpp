@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "exact/detail/cgal_number_types.hpp"
+#include "exact/detail/interval_polynomial.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::exact {
@@ -27,20 +28,9 @@ struct ManifoldDistance::Impl {
 
 namespace {
 
-std::vector<Interval> coefficient_enclosures(const Polynomial& p) {
-  std::vector<Interval> out;
-  for (const auto& t : p.terms()) out.push_back(enclose(t.coefficient));
-  return out;
-}
-
-// Interval evaluation (the caller holds upward rounding): every term is an enclosure of its true
-// value (coefficient enclosed, powers by repeated interval products), so the sum encloses p(x)
-// for every x in the box.
-IA evaluate(const Polynomial& p, const std::vector<Interval>& coef, std::span<const IA> x) {
-  return p.evaluate_with<IA>(x, [&](std::size_t i) { return detail::to_ia(coef[i]); });
-}
-
-bool finite(const IA& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); }
+using detail::coefficient_enclosures;
+using detail::evaluate;
+using detail::finite;
 
 bool strictly_inside(const Box& K, const Box& T) {
   for (std::size_t i = 0; i < K.size(); ++i)

@@ -1,19 +1,9 @@
 // libFuzzer target: the polynomial reader (see readers.hpp for what counts as a failure).
+#include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <exception>
-#include <string>
-#include <typeinfo>
 
 #include "fuzz/readers.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  try {
-    delcert::fuzz::polynomial(std::string(reinterpret_cast<const char*>(data), size));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "delcert fuzz_polynomial: undocumented exception %s: %s\n", typeid(e).name(), e.what());
-    std::abort();
-  }
-  return 0;
+  return delcert::fuzz::run_one("fuzz_polynomial", delcert::fuzz::polynomial, data, size);
 }

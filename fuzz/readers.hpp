@@ -11,10 +11,15 @@
 // crash, a sanitizer report or a hang is a bug as well; those the fuzzer and ctest see directly.
 #pragma once
 
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <typeinfo>
 
 #include "certify/claims.hpp"
 #include "core/io/complex.hpp"
@@ -139,6 +144,18 @@ inline bool polynomial(const std::string& data) {
   } catch (const PolynomialParseError&) {
   }
   return accepted;
+}
+
+// The body of every libFuzzer target: feed the input to `reader`; an escaping exception is a
+// finding, reported with the target's name and turned into a crash that libFuzzer records.
+inline int run_one(const char* target, bool (*reader)(const std::string&), const std::uint8_t* data, std::size_t size) {
+  try {
+    reader(std::string(reinterpret_cast<const char*>(data), size));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "delcert %s: undocumented exception %s: %s\n", target, typeid(e).name(), e.what());
+    std::abort();
+  }
+  return 0;
 }
 
 }  // namespace delcert::fuzz

@@ -5,7 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +65,16 @@ inline std::string slurp(const std::string& path) {
   s << in.rdbuf();
   return s.str();
 }
+
+// DELCERT_TEST_SCALE (default 1) scales the size of the long soundness suites (differential,
+// mutation): scripts/sanitize.sh runs them at 0.1, a long run on demand at 20.
+inline double test_scale() {
+  const char* s = std::getenv("DELCERT_TEST_SCALE");
+  const double v = s && *s ? std::atof(s) : 1.0;
+  return v > 0 ? v : 1.0;
+}
+// `base` scaled by test_scale(), at least 1.
+inline int scaled(int base) { return std::max(1, static_cast<int>(std::lround(base * test_scale()))); }
 
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);

@@ -16,17 +16,14 @@
 
 #include "exact/number_types.hpp"
 #include "support.hpp"
+#include "tests/test_support.hpp"
 
 namespace delcert::certify::test {
 namespace {
 
-double test_scale() {
-  const char* s = std::getenv("DELCERT_TEST_SCALE");
-  if (!s || !*s) return 1.0;
-  const double v = std::atof(s);
-  return v > 0 ? v : 1.0;
-}
-int scaled(int base) { return std::max(1, static_cast<int>(std::lround(base * test_scale()))); }
+using delcert::test::scaled;
+using delcert::test::test_scale;
+
 
 struct Tally {
   std::map<std::string, long> checks;

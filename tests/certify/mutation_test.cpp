@@ -12,9 +12,13 @@
 
 #include "exact/tangent_predicates.hpp"
 #include "support.hpp"
+#include "tests/test_support.hpp"
 
 namespace delcert::certify::test {
 namespace {
+
+using delcert::test::scaled;
+using delcert::test::test_scale;
 
 struct Base {
   std::string spec;
@@ -278,15 +282,6 @@ Base make_base(const std::string& spec, const std::string& shape, double scale, 
   return B;
 }
 
-// DELCERT_TEST_SCALE (default 1) scales the number of mutants per kind; at 1 the suite makes
-// more than 1,000 mutants.
-double test_scale() {
-  const char* s = std::getenv("DELCERT_TEST_SCALE");
-  const double v = s && *s ? std::atof(s) : 1.0;
-  return v > 0 ? v : 1.0;
-}
-int per_kind(int base) { return std::max(1, static_cast<int>(std::lround(base * test_scale()))); }
-
 Tally& grand_total() {
   static Tally t;
   return t;
@@ -377,35 +372,35 @@ long minimum(long m) { return std::lround(m * std::min(1.0, test_scale())); }
 
 TEST(Mutation, SphereMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:sphere-2", "sphere", 1, fibonacci_sphere(90), per_kind(70), 101), t);
+  run_mutants(make_base("builtin:sphere-2", "sphere", 1, fibonacci_sphere(90), scaled(70), 101), t);
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinSphere2));
 }
 
 TEST(Mutation, FlatTorusMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:clifford-torus-2", "circles", 1, torus2_lattice(8, 10), per_kind(40), 202), t);
+  run_mutants(make_base("builtin:clifford-torus-2", "circles", 1, torus2_lattice(8, 10), scaled(40), 202), t);
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinTorus2));
 }
 
 TEST(Mutation, ThreeSphereMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:sphere-3", "sphere", 1, spread_sphere(4, 70, 0.5, 13), per_kind(30), 303), t);
+  run_mutants(make_base("builtin:sphere-3", "sphere", 1, spread_sphere(4, 70, 0.5, 13), scaled(30), 303), t);
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinSphere3));
 }
 
 TEST(Mutation, TorusOfRevolutionMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:torus-of-revolution", "torus-of-revolution", 1, torus_of_revolution(18, 8), per_kind(35), 404), t);
+  run_mutants(make_base("builtin:torus-of-revolution", "torus-of-revolution", 1, torus_of_revolution(18, 8), scaled(35), 404), t);
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinTorusOfRevolution));
 }
 
 TEST(Mutation, FlatThreeTorusMutantsAreNeverCertified) {
   Tally t;
-  run_mutants(make_base("builtin:clifford-torus-3", "circles", 1, torus3_bcc(4), per_kind(8), 505), t);
+  run_mutants(make_base("builtin:clifford-torus-3", "circles", 1, torus3_bcc(4), scaled(8), 505), t);
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinTorus3));
 }
@@ -417,13 +412,13 @@ TEST(Mutation, ScaledInputMutantsAreNeverCertified) {
   Tally t;
   for (int k : {-600, 450}) {
     const std::string spec = scaled_spec(dir, "sphere-2", k);
-    run_mutants(make_base(spec, "sphere", std::ldexp(1.0, k), scaled_points(fibonacci_sphere(90), k), per_kind(12),
+    run_mutants(make_base(spec, "sphere", std::ldexp(1.0, k), scaled_points(fibonacci_sphere(90), k), scaled(12),
                           606 + static_cast<std::uint64_t>(k + 1000)), t);
   }
   {
     const int k = -300;
     const std::string spec = scaled_spec(dir, "clifford-torus-2", k);
-    run_mutants(make_base(spec, "circles", std::ldexp(1.0, k), scaled_points(torus2_lattice(8, 10), k), per_kind(12), 707), t);
+    run_mutants(make_base(spec, "circles", std::ldexp(1.0, k), scaled_points(torus2_lattice(8, 10), k), scaled(12), 707), t);
   }
   report(t);
   EXPECT_GE(mutants(t), minimum(kMinScaled));

@@ -36,19 +36,16 @@
 
 #include "exact/predicates.hpp"
 #include "support.hpp"
+#include "tests/test_support.hpp"
 
 namespace delcert::exact {
 namespace {
 
+using delcert::test::scaled;
+using delcert::test::test_scale;
+
 using testing::Rng;
 
-double test_scale() {
-  const char* s = std::getenv("DELCERT_TEST_SCALE");
-  if (!s || !*s) return 1.0;
-  const double v = std::atof(s);
-  return v > 0 ? v : 1.0;
-}
-int scaled(int base) { return std::max(1, static_cast<int>(std::lround(base * test_scale()))); }
 
 // ---- tally of comparisons, printed at the end of the program ----
 
