@@ -28,13 +28,13 @@
 #include <string>
 #include <vector>
 
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace {
 

@@ -35,10 +35,10 @@
 #include <string>
 #include <vector>
 
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "io/spec.hpp"
 
 namespace {
 

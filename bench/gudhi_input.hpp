@@ -14,8 +14,8 @@
 
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/points.hpp"
 
 namespace delcert::bench {
 

@@ -1,8 +1,8 @@
 #include "certify/certificate.hpp"
 
-#include "core/io/points.hpp"
 #include "exact/number_types.hpp"
 #include "exact/polynomial.hpp"
+#include "io/points.hpp"
 
 namespace delcert::certify {
 

@@ -16,12 +16,12 @@
 #include "certify/theorem.hpp"
 #include "certify/thickness.hpp"
 #include "certify/topology.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/spec.hpp"
 #include "exact/number_types.hpp"
 #include "exact/tangent_predicates.hpp"
+#include "io/atomic_file.hpp"
+#include "io/complex.hpp"
+#include "io/input_error.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::certify {
 

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "certify/certificate.hpp"
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::certify {
 

@@ -2,10 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/strict_json.hpp"
 #include "exact/polynomial.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/strict_json.hpp"
 
 namespace delcert::certify {
 

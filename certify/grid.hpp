@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 namespace delcert::certify {
 

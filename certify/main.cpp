@@ -12,10 +12,10 @@
 #include <thread>
 
 #include "certify/certify.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/spec.hpp"
 #include "exact/interval.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/spec.hpp"
 
 int main(int argc, char** argv) {
   using namespace delcert;

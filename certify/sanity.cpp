@@ -9,10 +9,10 @@
 
 #include "certify/grid.hpp"
 #include "certify/parallel.hpp"
-#include "core/io/input_error.hpp"
 #include "exact/manifold_distance.hpp"
 #include "exact/number_types.hpp"
 #include "exact/simplex_predicates.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::certify {
 

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "certify/certificate.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::certify {
 

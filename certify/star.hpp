@@ -33,10 +33,10 @@
 #include <string>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "exact/filter_stats.hpp"
 #include "exact/interval.hpp"
 #include "exact/tangent_space.hpp"
+#include "io/points.hpp"
 
 namespace delcert::certify {
 

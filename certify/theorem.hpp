@@ -21,7 +21,7 @@
 #include <string>
 
 #include "certify/certificate.hpp"
-#include "core/io/spec.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::certify {
 

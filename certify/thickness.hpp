@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "certify/certificate.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 
 namespace delcert::certify {
 

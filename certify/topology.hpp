@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/complex.hpp"
+#include "io/complex.hpp"
 
 namespace delcert::certify {
 

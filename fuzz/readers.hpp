@@ -22,11 +22,11 @@
 #include <typeinfo>
 
 #include "certify/claims.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "exact/polynomial.hpp"
+#include "io/complex.hpp"
+#include "io/input_error.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::fuzz {
 

@@ -6,8 +6,8 @@
 #include <functional>
 #include <string>
 
-#include "core/io/points.hpp"
 #include "core/manifold/manifold.hpp"
+#include "io/points.hpp"
 
 namespace delcert::app {
 

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "core/app/command.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/spec.hpp"
+#include "io/input_error.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::app {
 

@@ -28,15 +28,15 @@
 #include <vector>
 
 #include "core/app/command.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
 #include "core/sampling/sampling.hpp"
 #include "exact/polynomial.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::app {
 

@@ -3,10 +3,10 @@
 #include <memory>
 
 #include "core/app/command.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/sampling.hpp"
+#include "io/atomic_file.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::app {
 

@@ -16,15 +16,15 @@
 #include <vector>
 
 #include "core/app/command.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/tangential/complex_topology.hpp"
 #include "core/tangential/parallel.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "io/atomic_file.hpp"
+#include "io/complex.hpp"
+#include "io/input_error.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::app {
 

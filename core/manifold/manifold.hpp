@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "core/io/spec.hpp"
 #include "exact/polynomial.hpp"
+#include "io/spec.hpp"
 
 namespace delcert {
 

@@ -22,8 +22,8 @@
 #include <span>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/refine/point_index.hpp"
+#include "io/points.hpp"
 
 namespace delcert::refine {
 

@@ -14,8 +14,8 @@
 #include <span>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/spatial/kd_tree.hpp"
+#include "io/points.hpp"
 
 namespace delcert::refine {
 

@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <limits>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/points.hpp"
 #include "exact/polynomial.hpp"
+#include "io/atomic_file.hpp"
+#include "io/complex.hpp"
+#include "io/input_error.hpp"
+#include "io/points.hpp"
 
 namespace delcert::refine {
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/refine/hypotheses.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 
 namespace delcert::refine {
 

@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <span>
 
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 namespace delcert::refine {
 

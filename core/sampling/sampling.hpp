@@ -3,9 +3,9 @@
 
 #include <cstdint>
 
-#include "core/io/points.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/random.hpp"
+#include "io/points.hpp"
 
 namespace delcert {
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/io/complex.hpp"
+#include "io/complex.hpp"
 
 namespace delcert::tangential {
 

@@ -13,9 +13,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/tangential/neighbour_index.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/points.hpp"
 
 namespace delcert::tangential::detail {
 

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 namespace delcert::tangential {
 

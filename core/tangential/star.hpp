@@ -32,9 +32,9 @@
 #include <span>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/tangential/neighbour_index.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/points.hpp"
 
 namespace delcert::tangential {
 

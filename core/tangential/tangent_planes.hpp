@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "core/io/points.hpp"
 #include "core/manifold/manifold.hpp"
+#include "io/points.hpp"
 
 namespace delcert::tangential {
 

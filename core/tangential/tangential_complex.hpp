@@ -12,11 +12,11 @@
 #include <span>
 #include <vector>
 
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
 #include "core/tangential/neighbour_index.hpp"
 #include "core/tangential/star.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 
 namespace delcert::tangential {
 

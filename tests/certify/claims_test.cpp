@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "certify/claims.hpp"
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 #include "support.hpp"
 
 namespace delcert::certify {

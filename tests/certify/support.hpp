@@ -19,10 +19,10 @@
 #include "certify/certify.hpp"
 #include "certify/grid.hpp"
 #include "certify/star.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "exact/tangent_space.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::certify::test {
 

@@ -1,7 +1,8 @@
-// The trust boundary (docs/design.md §5): certify/ includes exact/, the plain file readers of core/io,
+// The trust boundary (docs/design.md §5): certify/ includes exact/, the plain file readers of io/,
 // CGAL number types, Eigen, nlohmann json, CLI11 and the standard library, nothing else of ours
-// (no core/manifold, core/spatial, core/sampling, core/tangential, no CGAL kernel or
-// triangulation), and its target never links the producer.
+// (nothing of core/ at all: no core/manifold, core/spatial, core/sampling, core/tangential; no
+// CGAL kernel or triangulation), and its target never links the producer. io/ itself includes
+// exact/ and io/ only, so that nothing of core/ reaches certify/ through the readers.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,13 +13,17 @@
 
 namespace {
 
-const std::vector<std::string> kAllowedOurs = {"certify/", "exact/", "core/io/points.hpp", "core/io/complex.hpp",
-                                                "core/io/spec.hpp", "core/io/atomic_file.hpp", "core/io/input_error.hpp",
-                                                "core/io/strict_json.hpp"};
+// Our include paths a directory may use, by prefix. Every other include of ours (anything under
+// core/, certify/, exact/ or io/, or any "quoted" include) crosses the boundary.
+const std::vector<std::string> kAllowedInCertify = {"certify/",       "exact/",           "io/points.hpp",
+                                                    "io/complex.hpp", "io/spec.hpp",      "io/atomic_file.hpp",
+                                                    "io/input_error.hpp", "io/strict_json.hpp"};
+const std::vector<std::string> kAllowedInIo = {"io/", "exact/"};
 const std::vector<std::string> kAllowedCgal = {"CGAL/Interval_nt.h", "CGAL/Mpzf.h", "CGAL/Gmpq.h", "CGAL/FPU.h"};
 
 // Forbidden includes in `text` ("line: include"), empty when it respects the boundary.
-std::vector<std::string> violations(const std::string& text) {
+std::vector<std::string> violations(const std::string& text,
+                                    const std::vector<std::string>& allowed_ours = kAllowedInCertify) {
   std::vector<std::string> out;
   std::regex inc(R"(^\s*#\s*include\s*([<"])([^>"]+)[>"])");
   std::istringstream in(text);
@@ -31,9 +36,9 @@ std::vector<std::string> violations(const std::string& text) {
     if (path.rfind("CGAL/", 0) == 0) {
       ok = std::find(kAllowedCgal.begin(), kAllowedCgal.end(), path) != kAllowedCgal.end();
     } else if (path.rfind("core/", 0) == 0 || path.rfind("certify/", 0) == 0 || path.rfind("exact/", 0) == 0 ||
-               m[1] == "\"") {
+               path.rfind("io/", 0) == 0 || m[1] == "\"") {
       ok = false;
-      for (const auto& a : kAllowedOurs) ok = ok || path.rfind(a, 0) == 0;
+      for (const auto& a : allowed_ours) ok = ok || path.rfind(a, 0) == 0;
     } else {
       ok = path.rfind("gudhi/", 0) != 0 && path.rfind("boost/", 0) != 0;  // system, Eigen, gmp, json, CLI11
     }
@@ -44,25 +49,37 @@ std::vector<std::string> violations(const std::string& text) {
 
 TEST(TrustBoundary, TheCheckerCatchesForbiddenIncludes) {
   EXPECT_TRUE(violations("#include \"exact/tangent_space.hpp\"\n#include <CGAL/Interval_nt.h>\n#include <vector>\n").empty());
+  EXPECT_TRUE(violations("#include \"io/points.hpp\"\n#include \"certify/claims.hpp\"\n").empty());
   EXPECT_EQ(violations("#include \"core/manifold/manifold.hpp\"\n").size(), 1u);
   EXPECT_EQ(violations("  #  include <CGAL/Regular_triangulation.h>\n").size(), 1u);
-  EXPECT_EQ(violations("#include \"core/tangential/star.hpp\"\n#include \"core/io/text_lines.hpp\"\n").size(), 2u);
+  EXPECT_EQ(violations("#include \"core/tangential/star.hpp\"\n#include \"io/text_lines.hpp\"\n").size(), 2u);
+  EXPECT_EQ(violations("#include <io/text_lines.hpp>\n").size(), 1u);
   EXPECT_EQ(violations("#include <gudhi/Tangential_complex.h>\n").size(), 1u);
+  // No exception for the readers' old home: nothing under core/ is allowed.
+  EXPECT_EQ(violations("#include \"core/io/points.hpp\"\n").size(), 1u);
+  EXPECT_EQ(violations("#include \"core/io/points.hpp\"\n", kAllowedInIo).size(), 1u);
+  // io/ may include itself and exact/, but neither core/ nor certify/.
+  EXPECT_TRUE(violations("#include \"io/text_lines.hpp\"\n#include \"exact/polynomial.hpp\"\n", kAllowedInIo).empty());
+  EXPECT_EQ(violations("#include \"core/sampling/random.hpp\"\n", kAllowedInIo).size(), 1u);
+  EXPECT_EQ(violations("#include \"certify/claims.hpp\"\n", kAllowedInIo).size(), 1u);
 }
 
-TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
+// Checks every source of `dir` against the boundary and its CMakeLists.txt for links to the
+// producer, a CGAL target or GUDHI; returns the number of source lines.
+long check_directory(const std::string& dir, const std::vector<std::string>& allowed_ours) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(DELCERT_SOURCE_DIR) / "certify";
   int files = 0;
   long lines = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
+  for (const auto& entry : fs::directory_iterator(fs::path(DELCERT_SOURCE_DIR) / dir)) {
     const std::string ext = entry.path().extension().string();
     std::ifstream f(entry.path());
     std::string text((std::istreambuf_iterator<char>(f)), {});
-    if (ext == ".cpp" || ext == ".hpp") {
+    if (ext == ".cpp" || ext == ".hpp" || ext == ".in") {
       ++files;
       lines += std::count(text.begin(), text.end(), '\n');
-      for (const auto& v : violations(text)) ADD_FAILURE() << entry.path().string() << ":" << v << " crosses the trust boundary";
+      for (const auto& v : violations(text, allowed_ours)) {
+        ADD_FAILURE() << entry.path().string() << ":" << v << " crosses the trust boundary";
+      }
     }
     if (entry.path().filename() == "CMakeLists.txt") {
       for (const char* target : {"delcert_core", "CGAL::CGAL", "gudhi"}) {
@@ -71,13 +88,19 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
         std::string line;
         while (std::getline(in, line)) {
           auto code = line.substr(0, line.find('#'));
-          EXPECT_EQ(code.find(target), std::string::npos) << "certify/CMakeLists.txt links " << target << ": " << line;
+          EXPECT_EQ(code.find(target), std::string::npos) << dir << "/CMakeLists.txt links " << target << ": " << line;
         }
       }
     }
   }
-  EXPECT_GT(files, 5);
-  EXPECT_LT(lines, 4000) << "certify/ should stay small enough to read whole";
+  EXPECT_GT(files, 5) << dir;
+  return lines;
 }
+
+TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 4000) << "certify/ should stay small enough to read whole";
+}
+
+TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
 
 }  // namespace

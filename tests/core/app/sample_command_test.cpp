@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert {

@@ -4,8 +4,8 @@
 
 #include <Eigen/Dense>
 
-#include "core/io/spec.hpp"
 #include "core/sampling/sampling.hpp"
+#include "io/spec.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert {

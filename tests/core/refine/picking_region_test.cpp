@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/io/spec.hpp"
 #include "core/sampling/sampling.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::refine {
 namespace {

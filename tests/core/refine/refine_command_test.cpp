@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <regex>
 
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert {

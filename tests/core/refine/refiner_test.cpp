@@ -8,12 +8,12 @@
 #include <numbers>
 #include <vector>
 
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "core/refine/simplex_measures.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert::refine {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/io/spec.hpp"
 #include "core/spatial/kd_tree.hpp"
+#include "io/spec.hpp"
 
 namespace delcert {
 namespace {

@@ -12,10 +12,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/complex.hpp"
-#include "core/io/points.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "io/atomic_file.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 #include "tests/core/tangential/test_support.hpp"
 
 namespace delcert::tangential {

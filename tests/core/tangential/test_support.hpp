@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "core/io/points.hpp"
-#include "core/io/spec.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/random.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/star.hpp"
 #include "core/tangential/tangent_planes.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::tangential::testing {
 

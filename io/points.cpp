@@ -1,4 +1,4 @@
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/text_lines.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/text_lines.hpp"
 
 namespace delcert::io {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 namespace delcert::io {
 

@@ -1,4 +1,4 @@
-#include "core/io/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::io {
 

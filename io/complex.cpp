@@ -1,13 +1,13 @@
-#include "core/io/complex.hpp"
+#include "io/complex.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <map>
 #include <stdexcept>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/text_lines.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/text_lines.hpp"
 
 namespace delcert::io {
 

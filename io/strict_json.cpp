@@ -1,10 +1,10 @@
-#include "core/io/strict_json.hpp"
+#include "io/strict_json.hpp"
 
 #include <algorithm>
 #include <cstring>
 #include <vector>
 
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::io {
 

@@ -1,9 +1,9 @@
-#include "core/io/spec.hpp"
+#include "io/spec.hpp"
 
 #include <gtest/gtest.h>
 
-#include "core/io/input_error.hpp"
-#include "tests/core/io/expect_input_error.hpp"
+#include "io/input_error.hpp"
+#include "tests/io/expect_input_error.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert::io {

@@ -1,4 +1,4 @@
-#include "core/io/points.hpp"
+#include "io/points.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "core/io/input_error.hpp"
 #include "core/sampling/random.hpp"
-#include "tests/core/io/expect_input_error.hpp"
+#include "io/input_error.hpp"
+#include "tests/io/expect_input_error.hpp"
 #include "tests/test_support.hpp"
 
 namespace delcert::io {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::test {
 

@@ -1,13 +1,13 @@
-#include "core/io/spec.hpp"
+#include "io/spec.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <limits>
 
-#include "core/io/atomic_file.hpp"
-#include "core/io/input_error.hpp"
-#include "core/io/strict_json.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/strict_json.hpp"
 
 namespace delcert::io {
 

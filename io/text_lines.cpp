@@ -1,9 +1,9 @@
-#include "core/io/text_lines.hpp"
+#include "io/text_lines.hpp"
 
 #include <charconv>
 #include <cmath>
 
-#include "core/io/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::io::detail {
 
