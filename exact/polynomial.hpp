@@ -101,7 +101,10 @@ class Polynomial {
   // Exact partial derivative with respect to x_{var+1} (0-based var).
   Polynomial derivative(int var) const;
 
-  // Canonical text: terms in decreasing monomial order, exact rational coefficients.
+  // Canonical text: terms in decreasing monomial order, exact rational coefficients. parse() reads
+  // it back to the same polynomial whenever it is within PolynomialLimits::max_text_length; an
+  // expanded text can be longer than the text it came from ("(x1+...+x9)^7" has 6435 terms), and
+  // such a text is refused like any other over-long input.
   std::string to_string() const;
 
   // Integer form: p = (sum numerators[i] * x^terms()[i].monomial) / denominator, denominator > 0.
