@@ -18,7 +18,7 @@
 #include "core/app/command.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/tangential/complex_topology.hpp"
-#include "core/tangential/parallel.hpp"
+#include "core/support/parallel.hpp"
 #include "core/tangential/tangential_complex.hpp"
 #include "io/atomic_file.hpp"
 #include "io/complex.hpp"
@@ -70,7 +70,7 @@ int run_tangential(const TangentialArgs& a) {
   check_on_manifold(manifold, points, a.points);
   times["read"] = clock.lap();
 
-  const int threads = tangential::resolve_threads(a.threads);
+  const int threads = support::resolve_threads(a.threads);
   tangential::TangentPlanes planes;
   try {
     planes = tangential::compute_tangent_planes(manifold, points, threads);

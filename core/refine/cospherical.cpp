@@ -41,7 +41,7 @@ bool cosph_member(const io::PointSet& points, std::span<const int> cell, std::sp
   return member_with_l2(points, cell, centre, radius2, q, shortest_edge2(points, cell), options, out);
 }
 
-std::vector<CosphMember> cosph_members(const io::PointSet& points, const PointIndex& index, std::span<const int> cell,
+std::vector<CosphMember> cosph_members(const io::PointSet& points, const spatial::NeighbourIndex& index, std::span<const int> cell,
                                        std::span<const double> centre, double radius2, const CosphOptions& options) {
   const double sigma_l2 = shortest_edge2(points, cell);
   const double L = std::max(std::sqrt(sigma_l2), options.length_floor);

@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-#include "core/refine/point_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "io/points.hpp"
 
 namespace delcert::refine {
@@ -48,7 +48,7 @@ bool cosph_member(const io::PointSet& points, std::span<const int> cell, std::sp
 // Every q ∉ σ with q * σ in cosph, sorted by q. Only points within
 // sqrt(R^2 + δ0^2 max(L(σ), floor)^2 + slack) of c can qualify (L(q * σ) <= L(σ)); those come
 // from `index`, which must hold exactly the points of `points`.
-std::vector<CosphMember> cosph_members(const io::PointSet& points, const PointIndex& index, std::span<const int> cell,
+std::vector<CosphMember> cosph_members(const io::PointSet& points, const spatial::NeighbourIndex& index, std::span<const int> cell,
                                        std::span<const double> centre, double radius2, const CosphOptions& options);
 
 // The whole definition, preconditions included: R_p(σ) < eps and σ Γ0-good (then the power

@@ -19,7 +19,7 @@ using Set = std::array<std::uint32_t, kMaxSimplexVertices - 1>;  // candidate-lo
 
 }  // namespace
 
-std::optional<HittingSet> find_hitting_set(std::span<const double> x, const io::PointSet& points, const PointIndex& index,
+std::optional<HittingSet> find_hitting_set(std::span<const double> x, const io::PointSet& points, const spatial::NeighbourIndex& index,
                                            const HittingQuery& query, HittingStats* stats) {
   HittingStats local;
   HittingStats& st = stats ? *stats : local;

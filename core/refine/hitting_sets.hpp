@@ -19,7 +19,7 @@
 #include <span>
 #include <vector>
 
-#include "core/refine/point_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "io/points.hpp"
 
 namespace delcert::refine {
@@ -46,7 +46,7 @@ struct HittingStats {
 
 // The first hitting set of x in canonical order (by size, then lexicographically), or nullopt
 // when x is a good point. `index` must hold exactly the points of `points`.
-std::optional<HittingSet> find_hitting_set(std::span<const double> x, const io::PointSet& points, const PointIndex& index,
+std::optional<HittingSet> find_hitting_set(std::span<const double> x, const io::PointSet& points, const spatial::NeighbourIndex& index,
                                            const HittingQuery& query, HittingStats* stats = nullptr);
 
 }  // namespace delcert::refine

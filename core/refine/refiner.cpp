@@ -14,11 +14,11 @@
 #include "core/refine/cospherical.hpp"
 #include "core/refine/hitting_sets.hpp"
 #include "core/refine/picking_region.hpp"
-#include "core/refine/point_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "core/refine/simplex_measures.hpp"
 #include "core/sampling/random.hpp"
-#include "core/tangential/neighbour_index.hpp"
-#include "core/tangential/parallel.hpp"
+#include "core/spatial/neighbour_index.hpp"
+#include "core/support/parallel.hpp"
 #include "core/tangential/star.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "core/tangential/tangential_complex.hpp"
@@ -169,8 +169,7 @@ class Refiner {
   tangential::TangentPlanes planes_;
   tangential::TangentialComplex tc_;
   tangential::StarOptions star_options_;
-  PointIndex index_;
-  tangential::NeighbourIndex paper_index_;  // paper mode: star(x) right after a Rule 2 insertion
+  spatial::NeighbourIndex index_;  // exactly R_.points, kept in step with every insertion
   std::vector<std::vector<Configuration>> configs_;
   std::vector<std::vector<int>> cells_copy_;  // per point: its star's cells as last seen (for consistency)
   std::unordered_map<CellKey, std::uint8_t, CellKeyHash> masks_;
@@ -251,7 +250,7 @@ std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
 
 void Refiner::recompute_configurations(const std::vector<std::size_t>& which) {
   configs_.resize(R_.points.size());
-  tangential::parallel_chunks(which.size(), P_.threads, 16, [&](int) {
+  support::parallel_chunks(which.size(), P_.threads, 16, [&](int) {
     return [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) configs_[which[i]] = configurations_of(which[i]);
     };
@@ -427,10 +426,9 @@ bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
 
 bool Refiner::new_star_is_big(std::size_t x) {
   tangential::extend_tangent_planes(M_, R_.points, planes_);
-  paper_index_.extend(R_.points);
   std::vector<tangential::Star> tmp;
   std::vector<std::size_t> which{x};
-  tangential::compute_stars(R_.points, planes_, paper_index_, which, tmp, {});
+  tangential::compute_stars(R_.points, planes_, index_, which, tmp, {});
   const auto& st = tmp[x];
   if (!st.closed) return true;
   for (double r2 : st.radii2)
@@ -491,8 +489,7 @@ RefineResult Refiner::run() {
     }
     R_.hypotheses = evaluate_hypotheses(hi);
   }
-  index_ = PointIndex(R_.points);
-  if (paper_) paper_index_ = tangential::NeighbourIndex(R_.points);
+  index_ = spatial::NeighbourIndex(R_.points);
   {
     const auto t = Clock::now();
     std::vector<std::size_t> all(R_.points.size());
@@ -640,7 +637,7 @@ void Refiner::measure() {
   f.min_face_thickness_ratio = std::numeric_limits<double>::infinity();
   f.min_protection = std::numeric_limits<double>::infinity();
   double max_r2 = 0;
-  const tangential::NeighbourIndex& nidx = tc_.index();
+  const spatial::NeighbourIndex& nidx = tc_.index();
   std::vector<std::pair<double, std::size_t>> nn;
   for (std::size_t p = 0; p < tc_.size(); ++p) {
     const tangential::Star& st = tc_.star(p);
@@ -677,7 +674,7 @@ void Refiner::measure() {
     io::PointSet in;
     in.dimension = R_.points.dimension;
     in.coordinates.assign(R_.points.coordinates.begin(), R_.points.coordinates.begin() + R_.input_size * R_.points.dimension);
-    tangential::NeighbourIndex ii(in);
+    spatial::NeighbourIndex ii(in);
     for (std::size_t p = 0; p < in.size(); ++p) {
       ii.nearest(in.point(p), 2, nn);
       for (const auto& [d2, q] : nn)

@@ -7,7 +7,8 @@
 #include <queue>
 #include <stdexcept>
 
-#include "core/spatial/kd_tree.hpp"
+#include "core/spatial/neighbour_index.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert {
 
@@ -84,8 +85,9 @@ void sample_manifold(const Manifold& manifold, std::size_t count, Random& rng, i
   p.resize(N);
   while (produced < count) {
     if (++attempts > 100 * count + 1000)
-      throw std::runtime_error("sampling " + spec.source + ": too few bounding-box points project onto M; check "
-                               "the bounding box and the equations");
+      throw io::InputError(spec.source, 0,
+                           "sampling: too few bounding-box points project onto M; check the bounding box and the "
+                           "equations");
     for (int j = 0; j < N; ++j) p[j] = rng.uniform(spec.bounding_box[j].first, spec.bounding_box[j].second);
     auto z = manifold.project(p);
     if (!z || !manifold.on_selected_component(as_span(*z))) continue;
@@ -100,13 +102,12 @@ void sample_manifold(const Manifold& manifold, std::size_t count, Random& rng, i
 
 std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius) {
   const std::size_t n = dense.size();
-  const int d = dense.dimension;
   std::vector<std::size_t> selected;
   if (!n) {
     if (covering_radius) *covering_radius = 0;
     return selected;
   }
-  KdTree tree(dense.coordinates.data(), n, d);
+  const spatial::NeighbourIndex tree(dense);
   std::vector<double> dist2(n, std::numeric_limits<double>::infinity());
   // Lazy max-heap of (squared distance to the selection, index); ties go to the smaller index.
   using Item = std::pair<double, std::size_t>;
@@ -164,18 +165,12 @@ EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options) {
   }
   r.covering_radius = cover;
   r.dense_size = dense.size();
-  KdTree tree(r.points.coordinates.data(), r.points.size(), r.points.dimension);
+  const spatial::NeighbourIndex tree(r.points);
   double min2 = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, std::size_t>> nn;
   for (std::size_t i = 0; i < r.points.size(); ++i) {
-    auto nn = tree.nearest(r.points.point(i), 2);
-    if (nn.size() == 2) {
-      double s = 0;
-      for (int j = 0; j < r.points.dimension; ++j) {
-        double e = r.points.point(i)[j] - r.points.point(nn[1])[j];
-        s += e * e;
-      }
-      min2 = std::min(min2, s);
-    }
+    tree.nearest(r.points.point(i), 2, nn);
+    if (nn.size() == 2) min2 = std::min(min2, nn[1].first);
   }
   r.min_distance = std::isfinite(min2) ? std::sqrt(min2) : 0;
   return r;

@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/tangential/neighbour_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "io/points.hpp"
 
@@ -40,7 +40,7 @@ double scale_for(double d2);
 // in doubling batches on demand.
 class Neighbourhood {
  public:
-  Neighbourhood(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index,
+  Neighbourhood(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                 std::size_t initial_k);
 
   // Starts over for point p (fetches the first batch).
@@ -62,7 +62,7 @@ class Neighbourhood {
 
   const io::PointSet& points_;
   const TangentPlanes& planes_;
-  const NeighbourIndex& index_;
+  const spatial::NeighbourIndex& index_;
   int N_, m_;
   std::size_t initial_k_, p_ = 0, k_ = 0;
   bool exhausted_ = false;

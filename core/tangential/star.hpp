@@ -32,7 +32,7 @@
 #include <span>
 #include <vector>
 
-#include "core/tangential/neighbour_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "io/points.hpp"
 
@@ -87,10 +87,10 @@ struct StarStats {
 
 // Computes star(p) for every p in `which` from all of `points` and stores it in stars[p];
 // `stars` is first resized to points.size() (stars not listed keep their value). `index` must
-// hold exactly `points` (NeighbourIndex(points), or kept in step with NeighbourIndex::extend);
+// hold exactly `points` (spatial::NeighbourIndex(points), or kept in step with spatial::NeighbourIndex::extend);
 // `planes` must cover every point. m = planes.intrinsic_dimension() must be 2, 3 or 4.
 // Throws std::invalid_argument on mismatched sizes, an unsupported m, or two identical points.
-StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index,
+StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                         std::span<const std::size_t> which, std::vector<Star>& stars, const StarOptions& options = {});
 
 // The power centre of the simplex `cell` (sorted global indices, containing p) in T_p, in

@@ -12,11 +12,13 @@
 #include <string>
 
 #include "core/tangential/local_problem.hpp"
-#include "core/tangential/parallel.hpp"
+#include "core/support/parallel.hpp"
 #include "core/tangential/power_cell.hpp"
 #include "core/tangential/star.hpp"
 
 namespace delcert::tangential {
+
+using support::parallel_chunks;
 
 long Star::find(std::span<const int> v) const {
   const std::size_t w = static_cast<std::size_t>(m + 1);
@@ -72,7 +74,7 @@ double scale_for(double d2) {
   return std::ldexp(1.0, -std::ilogb(std::sqrt(d2)));
 }
 
-Neighbourhood::Neighbourhood(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index,
+Neighbourhood::Neighbourhood(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                              std::size_t initial_k)
     : points_(points), planes_(planes), index_(index), N_(points.dimension), m_(planes.intrinsic_dimension()),
       initial_k_(std::max<std::size_t>(initial_k, 1)) {}
@@ -318,7 +320,7 @@ std::size_t default_initial_neighbours(int m) {
 }
 
 template <int M>
-void run_stars(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index,
+void run_stars(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                std::span<const std::size_t> which, std::vector<Star>& stars, const StarOptions& options) {
   const std::size_t k0 = options.initial_neighbours ? options.initial_neighbours : default_initial_neighbours(M);
   std::mutex progress_mutex;
@@ -352,7 +354,7 @@ void run_stars(const io::PointSet& points, const TangentPlanes& planes, const Ne
   });
 }
 
-void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index) {
+void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index) {
   const int m = planes.intrinsic_dimension();
   if (m < 2 || m > 4)
     throw std::invalid_argument("the tangential complex is implemented for intrinsic dimension m = 2, 3, 4 (got " +
@@ -371,7 +373,7 @@ void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const
 
 }  // namespace
 
-StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes, const NeighbourIndex& index,
+StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                         std::span<const std::size_t> which, std::vector<Star>& stars, const StarOptions& options) {
   check_inputs(points, planes, index);
   for (std::size_t p : which)

@@ -4,9 +4,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/tangential/parallel.hpp"
+#include "core/support/parallel.hpp"
 
 namespace delcert::tangential {
+
+using support::parallel_chunks;
 
 void TangentPlanes::push_back(std::span<const double> basis) {
   const std::size_t s = static_cast<std::size_t>(N_) * m_;

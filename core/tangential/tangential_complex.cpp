@@ -5,9 +5,11 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "core/tangential/parallel.hpp"
+#include "core/support/parallel.hpp"
 
 namespace delcert::tangential {
+
+using support::parallel_chunks;
 
 namespace {
 
@@ -119,7 +121,7 @@ TangentialComplex::TangentialComplex(const io::PointSet& points, const TangentPl
 }
 
 void TangentialComplex::sync_index(const io::PointSet& points) {
-  if (index_.size() == 0 && index_.dimension() != points.dimension) index_ = NeighbourIndex(io::PointSet{points.dimension, {}});
+  if (index_.size() == 0 && index_.dimension() != points.dimension) index_ = spatial::NeighbourIndex(io::PointSet{points.dimension, {}});
   if (points.size() < index_.size() || points.dimension != index_.dimension())
     throw std::invalid_argument("the point set shrank or changed dimension; a TangentialComplex only supports appending");
   index_.extend(points);

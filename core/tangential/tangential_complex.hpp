@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "core/tangential/neighbour_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "core/tangential/star.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "io/complex.hpp"
@@ -30,7 +30,7 @@ struct Assembly {
 // The union of `stars` over points 0 .. num_points-1 (stars.size() >= num_points). A simplex s
 // is consistent when s is in star(q) for every vertex q of s. Parallel; the result does not
 // depend on `threads`. `order`, if given, is a permutation of 0 .. num_points-1 in which to visit
-// the stars (a spatial order is faster: NeighbourIndex::spatial_order); it changes no result.
+// the stars (a spatial order is faster: spatial::NeighbourIndex::spatial_order); it changes no result.
 Assembly assemble(const std::vector<Star>& stars, std::size_t num_points, int threads = 1,
                   std::span<const std::size_t> order = {});
 
@@ -47,7 +47,7 @@ class TangentialComplex {
   std::size_t size() const { return stars_.size(); }
   const Star& star(std::size_t p) const { return stars_[p]; }
   const std::vector<Star>& stars() const { return stars_; }
-  const NeighbourIndex& index() const { return index_; }
+  const spatial::NeighbourIndex& index() const { return index_; }
 
   // The incremental update of the refiner: after the caller appended points (and their planes,
   // see extend_tangent_planes) to the set, recomputes exactly the stars that can change
@@ -75,7 +75,7 @@ class TangentialComplex {
   void sync_index(const io::PointSet& points);
 
   int m_ = 0, N_ = 0;
-  NeighbourIndex index_;
+  spatial::NeighbourIndex index_;
   std::vector<Star> stars_;
 };
 

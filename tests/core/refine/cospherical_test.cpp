@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "core/refine/point_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "core/sampling/random.hpp"
 
 namespace delcert::refine {
@@ -96,7 +96,7 @@ TEST(Cosph, MembersAgreeWithBruteForce) {
     for (auto& c : v) c *= r / n;
     ps.push_back(v);
   }
-  PointIndex index(ps);
+  spatial::NeighbourIndex index(ps);
   for (double floor : {0.0, 0.5}) {
     CosphOptions o;
     o.delta0 = 0.3;

@@ -22,7 +22,7 @@ TEST(HittingSets, SliverCompletedByTheCandidateIsAHit) {
   ps.push_back(std::vector<double>{-1, 0, h});
   ps.push_back(std::vector<double>{0, -1, -h});
   ps.push_back(std::vector<double>{5, 5, 5});  // far away: never a candidate
-  PointIndex index(ps);
+  spatial::NeighbourIndex index(ps);
   std::vector<double> x{1, 0, h};
   HittingQuery q;
   q.gamma0 = 0.3;
@@ -94,7 +94,7 @@ TEST(HittingSets, AgreesWithBruteForceOnRandomClouds) {
     ps.dimension = 3;
     const int n = 12 + trial % 10;
     for (int i = 0; i < n; ++i) ps.push_back(std::vector<double>{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-0.15, 0.15)});
-    PointIndex index(ps);
+    spatial::NeighbourIndex index(ps);
     std::vector<double> x{rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.1, 0.1)};
     HittingQuery q;
     q.gamma0 = 0.4;

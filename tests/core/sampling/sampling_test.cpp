@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/spatial/kd_tree.hpp"
+#include "core/spatial/neighbour_index.hpp"
 #include "io/spec.hpp"
 
 namespace delcert {
@@ -44,12 +44,13 @@ TEST_P(EpsNet, IsSparseCoveringAndDeterministic) {
   Random rng(99);
   io::PointSet probe;
   sample_manifold(manifold, 2000, rng, probe);
-  KdTree tree(a.points.coordinates.data(), a.points.size(), a.points.dimension);
+  const spatial::NeighbourIndex tree(a.points);
   double worst = 0;
   for (std::size_t i = 0; i < probe.size(); ++i) {
-    auto nn = tree.nearest(probe.point(i), 1);
+    std::size_t nn = 0;
+    tree.nearest_distance2(probe.point(i), &nn);
     double s = 0;
-    for (int k = 0; k < probe.dimension; ++k) s += std::pow(probe.point(i)[k] - a.points.point(nn[0])[k], 2);
+    for (int k = 0; k < probe.dimension; ++k) s += std::pow(probe.point(i)[k] - a.points.point(nn)[k], 2);
     worst = std::max(worst, std::sqrt(s));
   }
   EXPECT_LT(worst, 1.5 * o.eps);
@@ -74,32 +75,6 @@ TEST(FarthestPoint, KnownAnswerOnALine) {
   // 0 first; farthest is 10; then 4 (distance 4 to {0, 10}); then 2 is at distance 2 < 2.5: stop.
   EXPECT_EQ(sel, (std::vector<std::size_t>{0, 5, 4}));
   EXPECT_DOUBLE_EQ(cover, 2.0);
-}
-
-TEST(KdTree, AgreesWithBruteForce) {
-  Random rng(5);
-  io::PointSet ps;
-  ps.dimension = 4;
-  for (int i = 0; i < 3000; ++i) ps.coordinates.push_back(rng.uniform(-1, 1));
-  KdTree tree(ps.coordinates.data(), ps.size(), ps.dimension, 7);
-  for (int t = 0; t < 50; ++t) {
-    std::vector<double> q(4);
-    for (double& v : q) v = rng.uniform(-1, 1);
-    double r2 = rng.uniform(0, 0.3);
-    std::vector<std::size_t> brute;
-    std::vector<std::pair<double, std::size_t>> all;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += std::pow(ps.point(i)[k] - q[k], 2);
-      if (s <= r2) brute.push_back(i);
-      all.emplace_back(s, i);
-    }
-    EXPECT_EQ(tree.ball(q, r2), brute);
-    std::sort(all.begin(), all.end());
-    auto nn = tree.nearest(q, 9);
-    ASSERT_EQ(nn.size(), 9u);
-    for (int k = 0; k < 9; ++k) EXPECT_EQ(nn[k], all[k].second);
-  }
 }
 
 }  // namespace

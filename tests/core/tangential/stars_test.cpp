@@ -30,7 +30,7 @@ std::vector<std::size_t> all_indices(std::size_t n) {
 }
 
 std::vector<Star> stars_of(const Sample& s, StarPath path, int threads = 1) {
-  NeighbourIndex index(s.points);
+  spatial::NeighbourIndex index(s.points);
   std::vector<Star> stars;
   StarOptions options;
   options.path = path;
@@ -119,7 +119,7 @@ void expect_closed_fans(const std::vector<Star>& stars) {
 // path must notice that it cannot decide and hand those stars to the exact regular triangulation.
 TEST(TangentialStars, CosphericalGridFallsBackAndStaysValid) {
   Sample s = testing::clifford_grid(2, 24, 0.0, 1);
-  NeighbourIndex index(s.points);
+  spatial::NeighbourIndex index(s.points);
   std::vector<Star> stars;
   StarStats stats = compute_stars(s.points, s.planes, index, all_indices(s.points.size()), stars, {});
   EXPECT_GT(stats.fallbacks, 0u);
@@ -135,7 +135,7 @@ TEST(TangentialStars, NearlyCosphericalInputMatchesExactReference) {
   for (int k : {2, 3})
     for (double jitter : {1e-15, 1e-14, 1e-13, 1e-12, 1e-11, 1e-9}) {
       Sample s = testing::clifford_grid(k, k == 2 ? 24 : 7, jitter, 2);
-      NeighbourIndex index(s.points);
+      spatial::NeighbourIndex index(s.points);
       std::vector<Star> stars;
       StarStats stats = compute_stars(s.points, s.planes, index, all_indices(s.points.size()), stars, {});
       auto reference = stars_of(s, StarPath::regular_triangulation);
@@ -212,7 +212,7 @@ TEST(TangentialStars, InsertRecomputesExactlyWhatChanges) {
 
 TEST(TangentialStars, RejectsBadInput) {
   Sample s = testing::builtin_sample("sphere-2", 50, 51);
-  NeighbourIndex index(s.points);
+  spatial::NeighbourIndex index(s.points);
   std::vector<Star> stars;
   std::vector<std::size_t> which{0, 1};
   // Planes for fewer points than there are.
@@ -227,7 +227,7 @@ TEST(TangentialStars, RejectsBadInput) {
   Sample dup = s;
   dup.points.push_back(s.points.point(7));
   dup.planes.push_back(s.planes.basis(7));
-  NeighbourIndex dup_index(dup.points);
+  spatial::NeighbourIndex dup_index(dup.points);
   std::vector<std::size_t> seven{7};
   EXPECT_THROW(compute_stars(dup.points, dup.planes, dup_index, seven, stars), std::invalid_argument);
   // Unsupported intrinsic dimension (a curve).

@@ -1,5 +1,7 @@
-// Nearest-neighbour index for the tangential stars: exact k-nearest and radius queries over a
-// point set that may grow (the refiner appends points between star updates).
+// NeighbourIndex: the one nearest-point search of the producer. Exact k-nearest and radius
+// queries over a point set (#points by N) that may grow: the sampler indexes its dense sample,
+// the tangential complex its points, and the refiner appends each inserted point and queries
+// between insertions.
 //
 // A kd-tree over a copy of the points, stored in tree order so that a leaf is contiguous in
 // memory, searched depth-first with incremental cell distances and a bounded heap. Appended
@@ -12,13 +14,14 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
 
 #include "io/points.hpp"
 
-namespace delcert::tangential {
+namespace delcert::spatial {
 
 class NeighbourIndex {
  public:
@@ -38,6 +41,14 @@ class NeighbourIndex {
   void nearest(std::span<const double> q, std::size_t k, std::vector<std::pair<double, std::size_t>>& out) const;
   // Every point with squared distance <= r2 to q, in no particular order.
   void ball(std::span<const double> q, double r2, std::vector<std::pair<double, std::size_t>>& out) const;
+  // The indices of those points, sorted.
+  std::vector<std::size_t> ball(std::span<const double> q, double r2) const;
+  // visit(index, squared distance) for each of those points, in no particular order.
+  void for_each_in_ball(std::span<const double> q, double r2,
+                        const std::function<void(std::size_t, double)>& visit) const;
+  // Squared distance from q to the nearest point (+inf when empty) and, if `index` is given, that
+  // point's index (among equally near points the lowest).
+  double nearest_distance2(std::span<const double> q, std::size_t* index = nullptr) const;
 
   // `indices` reordered so that nearby points come together (the tree's leaf order; appended
   // points not yet in the tree last). Processing queries in this order keeps the tree hot in
@@ -71,4 +82,4 @@ class NeighbourIndex {
   std::size_t buffer_first_ = 0;   // index of the first buffered point
 };
 
-}  // namespace delcert::tangential
+}  // namespace delcert::spatial

@@ -1,11 +1,11 @@
-#include "core/tangential/neighbour_index.hpp"
+#include "core/spatial/neighbour_index.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
 
-namespace delcert::tangential {
+namespace delcert::spatial {
 
 namespace {
 
@@ -190,4 +190,28 @@ void NeighbourIndex::ball(std::span<const double> q, double r2, std::vector<Item
   }
 }
 
-}  // namespace delcert::tangential
+std::vector<std::size_t> NeighbourIndex::ball(std::span<const double> q, double r2) const {
+  std::vector<Item> found;
+  ball(q, r2, found);
+  std::vector<std::size_t> out(found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) out[i] = found[i].second;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void NeighbourIndex::for_each_in_ball(std::span<const double> q, double r2,
+                                      const std::function<void(std::size_t, double)>& visit) const {
+  std::vector<Item> found;
+  ball(q, r2, found);
+  for (const auto& [d2, i] : found) visit(i, d2);
+}
+
+double NeighbourIndex::nearest_distance2(std::span<const double> q, std::size_t* index) const {
+  std::vector<Item> nn;
+  nearest(q, 1, nn);
+  if (nn.empty()) return std::numeric_limits<double>::infinity();
+  if (index) *index = nn[0].second;
+  return nn[0].first;
+}
+
+}  // namespace delcert::spatial

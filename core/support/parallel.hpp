@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-namespace delcert::tangential {
+namespace delcert::support {
 
 // threads <= 0: one per hardware thread.
 inline int resolve_threads(int threads) {
@@ -58,4 +58,4 @@ void parallel_chunks(std::size_t count, int threads, std::size_t chunk, MakeWork
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace delcert::tangential
+}  // namespace delcert::support
