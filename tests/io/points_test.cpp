@@ -6,8 +6,8 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <random>
 
-#include "core/sampling/random.hpp"
 #include "io/input_error.hpp"
 #include "tests/io/expect_input_error.hpp"
 #include "tests/test_support.hpp"
@@ -19,12 +19,14 @@ using test::fixture;
 
 PointSet awkward_points(int dim, std::size_t n) {
   // Doubles that are hard to print: subnormals, huge and tiny magnitudes, random mantissas.
-  Random rng(7);
+  // (std::mt19937_64 is fully specified by the standard: the same numbers on every platform.)
+  std::mt19937_64 rng(7);
+  auto uniform = [&] { return static_cast<double>(rng() >> 11) * 0x1p-53; };
   PointSet ps;
   ps.dimension = dim;
   for (std::size_t i = 0; i < n; ++i)
     for (int j = 0; j < dim; ++j) {
-      double x = (rng.uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng.bits() % 200) - 100);
+      double x = (uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng() % 200) - 100);
       ps.coordinates.push_back(x);
     }
   ps.coordinates[0] = std::numeric_limits<double>::denorm_min();
