@@ -114,6 +114,38 @@ void exact_row(const TangentSpace::Impl& s, const double* x, EX* row) {
   detail::chart_row<M>(s.U_exact.data(), [&](int i) { return EX(x[i]) - s.p_exact[i]; }, s.N, row);
 }
 
+// The chart row of x in either number type (the same overloaded name for the templates below).
+template <int M>
+void chart_row_of(const TangentSpace::Impl& s, const double* x, IA* row) {
+  interval_row<M>(s, x, row);
+}
+template <int M>
+void chart_row_of(const TangentSpace::Impl& s, const double* x, EX* row) {
+  exact_row<M>(s, x, row);
+}
+
+// The chart rows of `points` (and of `query` when given, after them) into buf, L = M + 1 entries
+// each, with rows[i] pointing at the row of points[i]; returns the query's row.
+template <int M, class NT>
+const NT* chart_rows_of(const TangentSpace::Impl& s, std::span<const double* const> points, const double* query, NT* buf,
+                        const NT** rows) {
+  constexpr int L = M + 1;
+  for (int i = 0; i < L; ++i) {
+    chart_row_of<M>(s, points[i], buf + i * L);
+    rows[i] = buf + i * L;
+  }
+  if (query) chart_row_of<M>(s, query, buf + L * L);
+  return buf + L * L;
+}
+
+// The interval coefficients and k0 of a cell's power test (see power_cell) from the bounds
+// TangentChart::cell stored: coef_j in [e[2j], e[2j+1]], k0 in [e[2M+2], e[2M+3]].
+template <int M>
+void stored_power_cell(const double* e, IA* coef, IA& k0) {
+  for (int j = 0; j <= M; ++j) coef[j] = IA(e[2 * j], e[2 * j + 1]);
+  k0 = IA(e[2 * (M + 1)], e[2 * (M + 1) + 1]);
+}
+
 // Moves local index 0 (p) to the front by one transposition; returns the permutation's sign.
 int put_origin_first(std::span<const int> given, int* order) {
   const int n = static_cast<int>(given.size());
@@ -304,9 +336,8 @@ int TangentCell::power_sign(int query, FilterContext& ctx) const {
     return det_sign_ * filtered_sign(
                            ctx, PredicateKind::power, filter_usable_,
                            [&] {
-                             IA coef[M + 1];
-                             for (int j = 0; j <= M; ++j) coef[j] = IA(enclosures_[2 * j], enclosures_[2 * j + 1]);
-                             const IA k0(enclosures_[2 * (M + 1)], enclosures_[2 * (M + 1) + 1]);
+                             IA coef[M + 1], k0;
+                             stored_power_cell<M>(enclosures_.data(), coef, k0);
                              return detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_);
                            },
                            [&] {
@@ -328,9 +359,8 @@ int TangentCell::power_sign(int query, const RationalConstant& delta, FilterCont
     return det_sign_ * filtered_sign(
                            ctx, PredicateKind::power_threshold, filter_usable_,
                            [&] {
-                             IA coef[M + 1];
-                             for (int j = 0; j <= M; ++j) coef[j] = IA(enclosures_[2 * j], enclosures_[2 * j + 1]);
-                             const IA k0(enclosures_[2 * (M + 1)], enclosures_[2 * (M + 1) + 1]);
+                             IA coef[M + 1], k0;
+                             stored_power_cell<M>(enclosures_.data(), coef, k0);
                              // det M(q) - delta det B, det B = coef_m.
                              return detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_) -
                                     detail::to_ia(delta.enclosure()) * coef[M];
@@ -595,16 +625,12 @@ int interval_power(const TangentSpace::Impl& s, std::span<const double* const> c
   constexpr int L = M + 1;
   IA buf[(M + 2) * L];
   const IA* rows[L];
-  for (int i = 0; i < L; ++i) {
-    interval_row<M>(s, cell[i], buf + i * L);
-    rows[i] = buf + i * L;
-  }
-  interval_row<M>(s, query, buf + L * L);
+  const IA* rq = chart_rows_of<M>(s, cell, query, buf, rows);
   IA coef[L], k0;
   detail::power_cell<M>(rows, false, coef, k0);
   const int ds = certain_sign(coef[M]);
   if (ds == 0 || ds == kUndecided) return ds;
-  IA v = detail::power_value<M>(coef, k0, buf + L * L, false);
+  IA v = detail::power_value<M>(coef, k0, rq, false);
   if (delta) v = v - detail::to_ia(delta->enclosure()) * coef[M];
   const int vs = certain_sign(v);
   return vs == kUndecided ? kUndecided : ds * vs;
@@ -618,21 +644,27 @@ int exact_power(const TangentSpace::Impl& s, std::span<const double* const> cell
   check_all_finite(cell, query, N);
   EX buf[(M + 2) * L];
   const EX* rows[L];
-  for (int i = 0; i < L; ++i) {
-    exact_row<M>(s, cell[i], buf + i * L);
-    rows[i] = buf + i * L;
-  }
-  exact_row<M>(s, query, buf + L * L);
+  const EX* rq = chart_rows_of<M>(s, cell, query, buf, rows);
   EX coef[L], k0;
   detail::power_cell<M>(rows, false, coef, k0);
   const int ds = detail::exact_sign(coef[M]);
   if (ds == 0) return 0;
-  EX v = detail::power_value<M>(coef, k0, buf + L * L, false);
+  EX v = detail::power_value<M>(coef, k0, rq, false);
   if (delta) {
     const EX num = detail::to_ex(delta->value().get_num()), den = detail::to_ex(delta->value().get_den());
     v = den * v - num * coef[M];
   }
   return ds * detail::exact_sign(v);
+}
+
+// The orientation determinant of m + 1 points from their chart rows, in either number type.
+template <int M, class NT>
+NT one_shot_orientation(const TangentSpace::Impl& s, std::span<const double* const> points) {
+  constexpr int L = M + 1;
+  NT buf[L * L];
+  const NT* rows[L];
+  chart_rows_of<M>(s, points, nullptr, buf, rows);
+  return detail::orientation_det<M>(rows, false);
 }
 
 // Shared body of the two one-shot power tests; delta == nullptr for the plain test.
@@ -659,27 +691,11 @@ int tangent_orientation(const TangentSpace& space, std::span<const double* const
   const auto& s = space.impl();
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(m, [&](auto Mc) {
     constexpr int M = Mc();
-    constexpr int L = M + 1;
     return filtered_sign(
-        ctx, PredicateKind::tangent_orientation,
-        [&] {
-          IA buf[L * L];
-          const IA* rows[L];
-          for (int i = 0; i < L; ++i) {
-            interval_row<M>(s, points[i], buf + i * L);
-            rows[i] = buf + i * L;
-          }
-          return detail::orientation_det<M>(rows, false);
-        },
+        ctx, PredicateKind::tangent_orientation, [&] { return one_shot_orientation<M, IA>(s, points); },
         [&] {
           check_all_finite(points, nullptr, space.ambient_dimension());
-          EX buf[L * L];
-          const EX* rows[L];
-          for (int i = 0; i < L; ++i) {
-            exact_row<M>(s, points[i], buf + i * L);
-            rows[i] = buf + i * L;
-          }
-          return detail::orientation_det<M>(rows, false);
+          return one_shot_orientation<M, EX>(s, points);
         });
   });
 }

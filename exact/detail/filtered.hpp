@@ -10,33 +10,19 @@
 // decided, one zero result when the sign is 0. Certificates report these counts.
 #pragma once
 
-#include <type_traits>
-
 #include "exact/detail/cgal_number_types.hpp"
 
 namespace delcert::exact::detail {
 
-// The sign an interval evaluation decides (kUndecided when it cannot), from either an interval
-// value (certain_sign) or a sign the evaluation decided itself (-1, 0, 1 or kUndecided; for
-// predicates whose filter tests several quantities).
-template <class R>
-int interval_sign_of(const R& r) {
-  if constexpr (std::is_same_v<R, IA>) return certain_sign(r);
-  else {
-    static_assert(std::is_same_v<R, int>, "an interval filter returns an IA value or a sign");
-    return r;
-  }
-}
-
-// The sign of an exact evaluation: an EX value or a sign already decided (-1, 0, 1).
-template <class R>
-int exact_sign_of(const R& r) {
-  if constexpr (std::is_same_v<R, EX>) return exact_sign(r);
-  else {
-    static_assert(std::is_same_v<R, int>, "an exact evaluation returns an EX value or a sign");
-    return r;
-  }
-}
+// The sign an evaluation decided: from an interval value (certain_sign: kUndecided when it
+// contains 0 and another value), from an exact value, or a sign the evaluation decided itself
+// (-1, 0, 1, or kUndecided from an interval evaluation; for predicates that test several
+// quantities). Any other result type is an error (no silent conversion to int).
+inline int sign_of(const IA& x) { return certain_sign(x); }
+inline int sign_of(const EX& x) { return exact_sign(x); }
+inline int sign_of(int s) { return s; }
+template <class T>
+int sign_of(const T&) = delete;
 
 // Sign of one predicate call of kind `kind`: `interval()` first, unless ctx.force_exact or
 // !use_filter (the caller knows the interval inputs are unusable, e.g. not finite); then
@@ -46,13 +32,13 @@ template <class IntervalEval, class ExactEval>
 int filtered_sign(FilterContext& ctx, PredicateKind kind, bool use_filter, IntervalEval&& interval, ExactEval&& exact) {
   EnsureUpward guard;
   if (use_filter && !ctx.force_exact) {
-    const int s = interval_sign_of(interval());
+    const int s = sign_of(interval());
     if (s != kUndecided) {
       count_result(ctx, kind, false, s);
       return s;
     }
   }
-  const int s = exact_sign_of(exact());
+  const int s = sign_of(exact());
   count_result(ctx, kind, true, s);
   return s;
 }
