@@ -30,20 +30,21 @@ const exact::Interval kUnknown{-INFINITY, INFINITY};
 
 // The search radius r at p (see star.hpp: the tested set holds every point within r of p).
 // First guesses; each run verifies whether r was large enough and grows it if not, so these
-// values change only how often a star is recomputed, never a result.
+// values change how often a star is recomputed and the radius reported, never a verdict.
 //  * Without a claimed star: a few grid cells, enough for the star of a well-spaced sample.
 constexpr double kInitialRadiusGridCells = 3;
 //  * With a claimed star: its vertices lie within 2R of p (R the largest cell radius) and 2.25R
 //    is needed (test_list), so a multiple of the farthest claimed vertex a little above
-//    2.25 / 2 = 1.125 usually suffices at once; 1.6 leaves room for cells whose farthest vertex
-//    is nearer than 2R.
+//    2.25 / 2 = 1.125 can suffice; 1.6 covers 2.25R whenever the farthest claimed vertex is at
+//    distance >= 2.25R / 1.6 (about 1.4R), so that one run usually suffices.
 constexpr double kClaimedVertexRadiusFactor = 1.6;
 //  * For one cell (test_cell): likewise from its own vertices; 2.5 covers 2.25R whenever the
 //    farthest vertex is at distance >= 0.9R.
 constexpr double kCellVertexRadiusFactor = 2.5;
-// Growth when the radius was too small: to a little more than what was needed (so that rounding
-// in the next run's enclosures cannot ask for the same radius again), and at least by a quarter
-// (so that the number of runs is logarithmic in the final radius).
+// Growth when the radius was too small: to a little more than what was needed (a margin over
+// the floating-point distances and enclosures it was computed from, so that the next run does
+// not ask for the same radius again), and at least by a quarter (so that the number of runs is
+// logarithmic in the final radius).
 constexpr double kNeededRadiusMargin = 1.0625;
 constexpr double kMinRadiusGrowth = 1.25;
 // Growth when gift-wrapping found no point beyond a ridge (the star may close farther away).
