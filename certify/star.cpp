@@ -1,7 +1,5 @@
 #include "certify/star.hpp"
 
-#include <CGAL/Interval_nt.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,6 +8,8 @@
 #include <type_traits>
 
 #include "certify/grid.hpp"
+#include "exact/interval_arithmetic.hpp"
+#include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"
 #include "exact/tangent_predicates.hpp"
 
@@ -18,60 +18,50 @@ namespace delcert::certify {
 namespace {
 
 // Interval arithmetic for enclosures only (never for a decision: signs come from exact/).
-// Interval_nt_advanced assumes upward rounding, which analyse_star holds for its whole body.
-using IA = CGAL::Interval_nt_advanced;
+// IntervalNumber assumes upward rounding, which analyse_star holds for its whole body.
+using IA = exact::IntervalNumber;
+using exact::determinant;
+using exact::to_interval;
+using exact::to_interval_number;
 constexpr int kMaxM = exact::kMaxTangentDimension;
-constexpr int kMaxSecureNeighbourhood = 4000;  // points within 5 eps of p tested by check 7
+static_assert(kMaxM <= exact::kMaxLinearSize);
 using List = std::array<int, kMaxM + 1>;  // local indices of a cell, [0] = p, the rest increasing
-
-IA ia(const exact::Interval& x) { return IA(x.lo, x.hi); }
-exact::Interval from(const IA& x) { return {x.inf(), x.sup()}; }
 const exact::Interval kUnknown{-INFINITY, INFINITY};
 
-// Determinant of a small n x n matrix (row-major, n <= 7) by Laplace expansion over column
-// subsets, memoised: ring operations only. The size is a template parameter so that the mask
-// loops unroll and the table has 2^n entries; det() dispatches on n. (The operations and their
-// order are the same for every n, so interval results are reproducible bit for bit.)
-template <int n, class T>
-T det_fixed(const T* a) {
-  // popcount of masks below 128 (no library call without -mpopcnt)
-  static constexpr std::array<unsigned char, 128> kBits = [] {
-    std::array<unsigned char, 128> b{};
-    for (unsigned i = 1; i < 128; ++i) b[i] = static_cast<unsigned char>(b[i >> 1] + (i & 1));
-    return b;
-  }();
-  std::array<T, (1u << n)> table;
-  table[0] = T(1);
-  for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    int r = kBits[mask];
-    const T* row = a + (n - r) * n;
-    T acc(0);
-    int pos = 0;
-    for (int j = 0; j < n; ++j)
-      if (mask >> j & 1) {
-        T t = row[j] * table[mask ^ (1u << j)];
-        if (pos++ % 2 == 0) acc = acc + t;
-        else acc = acc - t;
-      }
-    table[mask] = acc;
-  }
-  return table[(1u << n) - 1];
-}
-
-template <class T>
-T det(const T* a, int n) {
-  switch (n) {
-    case 0: return T(1);
-    case 1: return det_fixed<1>(a);
-    case 2: return det_fixed<2>(a);
-    case 3: return det_fixed<3>(a);
-    case 4: return det_fixed<4>(a);
-    case 5: return det_fixed<5>(a);
-    case 6: return det_fixed<6>(a);
-    case 7: return det_fixed<7>(a);
-    default: throw std::invalid_argument("det: matrix size above 7");
-  }
-}
+// The search radius r at p (see star.hpp: the tested set holds every point within r of p).
+// First guesses; each run verifies whether r was large enough and grows it if not, so these
+// values change how often a star is recomputed and the radius reported, never a verdict.
+//  * Without a claimed star: a few grid cells, enough for the star of a well-spaced sample.
+constexpr double kInitialRadiusGridCells = 3;
+//  * With a claimed star: its vertices lie within 2R of p (R the largest cell radius) and 2.25R
+//    is needed (test_list), so a multiple of the farthest claimed vertex a little above
+//    2.25 / 2 = 1.125 can suffice; 1.6 covers 2.25R whenever the farthest claimed vertex is at
+//    distance >= 2.25R / 1.6 (about 1.4R), so that one run usually suffices.
+constexpr double kClaimedVertexRadiusFactor = 1.6;
+//  * For one cell (test_cell): likewise from its own vertices; 2.5 covers 2.25R whenever the
+//    farthest vertex is at distance >= 0.9R.
+constexpr double kCellVertexRadiusFactor = 2.5;
+// Growth when the radius was too small: to a little more than what was needed (a margin over
+// the floating-point distances and enclosures it was computed from, so that the next run does
+// not ask for the same radius again), and at least by a quarter (so that the number of runs is
+// logarithmic in the final radius).
+constexpr double kNeededRadiusMargin = 1.0625;
+constexpr double kMinRadiusGrowth = 1.25;
+// Growth when gift-wrapping found no point beyond a ridge (the star may close farther away).
+constexpr double kOpenStarRadiusGrowth = 2;
+// Bounds on the work at one point: runs of the search-radius loop, and cells of one gift-wrap
+// (far above any real star: a wrap that exceeds it is reported as inconsistent).
+constexpr int kMaxRadiusRuns = 64;
+constexpr std::size_t kMaxWrapCells = 20000;
+// The degree test of check_link places a virtual point x = a weighted mean of p and the first
+// cell's vertices, weights 1 + attempt * i * kRayWeightStep for vertex i; an irrational-looking
+// step makes a second hit on a cell boundary unlikely. At most kRayAttempts placements.
+constexpr int kRayAttempts = 6;
+constexpr double kRayWeightStep = 0.37;
+// Check 7 (Definition 3.1): the points of W = B(p, kSecureNeighbourhoodEps * eps) are tested,
+// at most kMaxSecureNeighbourhood of them (an informational check: bounded work per point).
+constexpr double kSecureNeighbourhoodEps = 5;
+constexpr int kMaxSecureNeighbourhood = 4000;
 
 // The points tested at p: every point within distance `radius` of p (and possibly more).
 struct Local {
@@ -111,7 +101,7 @@ struct Local {
 std::vector<IA> gram_enclosure(const exact::TangentSpace& T, int m) {
   std::vector<IA> g(m * m);
   for (int a = 0; a < m; ++a)
-    for (int b = 0; b < m; ++b) g[a * m + b] = ia(exact::enclose(T.gram(a, b)));
+    for (int b = 0; b < m; ++b) g[a * m + b] = to_interval_number(exact::enclose(T.gram(a, b)));
   return g;
 }
 
@@ -136,7 +126,7 @@ Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std:
     for (int i = 0; i < N; ++i) {
       IA d = IA(x[i]) - IA(pp[i]);
       for (int a = 0; a < m; ++a) r[a] += U[i * m + a] * d;
-      if (!tangent_only) r[m] += CGAL::square(d);
+      if (!tangent_only) r[m] += exact::square(d);
     }
     if (!tangent_only)
       for (int a = 0; a <= m; ++a) L.drows[l * (m + 1) + a] = 0.5 * (r[a].inf() + r[a].sup());
@@ -146,7 +136,7 @@ Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std:
 }
 
 // Enclosure of a cell's centre (y = 2z with c = p + U z) and R^2 = z^T G z from the interval rows:
-// B y = h with B the rows b(v_i), h_i = s(v_i), by Cramer's rule.
+// B y = h with B the rows b(v_i), h_i = s(v_i), by Cramer's rule (when det B excludes 0).
 struct CellBox {
   bool ok = false;
   std::array<IA, kMaxM> y{};
@@ -156,18 +146,17 @@ struct CellBox {
 CellBox cell_box(const Local& L, const List& c) {
   const int m = L.m;
   CellBox box;
-  std::array<IA, kMaxM * kMaxM> B, Bj;
+  std::array<IA, kMaxM * kMaxM> B;
+  std::array<IA, kMaxM> h;
   B.fill(IA(0));
-  Bj.fill(IA(0));
-  for (int i = 0; i < m; ++i)
+  h.fill(IA(0));
+  for (int i = 0; i < m; ++i) {
     for (int a = 0; a < m; ++a) B[i * m + a] = L.row(c[i + 1])[a];
-  IA d = det(B.data(), m);
-  if (d.inf() <= 0 && d.sup() >= 0) return box;
-  for (int j = 0; j < m; ++j) {
-    std::copy(B.begin(), B.begin() + m * m, Bj.begin());
-    for (int i = 0; i < m; ++i) Bj[i * m + j] = L.row(c[i + 1])[m];
-    box.y[j] = det(Bj.data(), m) / d;
+    h[i] = L.row(c[i + 1])[m];
   }
+  IA d = determinant(B.data(), m);
+  if (d.inf() <= 0 && d.sup() >= 0) return box;
+  exact::cramer_solve(B.data(), h.data(), d, m, box.y.data());
   IA R2(0);
   for (int a = 0; a < m; ++a)
     for (int b = 0; b < m; ++b) R2 += box.y[a] * L.gram[a * m + b] * box.y[b];
@@ -210,21 +199,19 @@ struct DoubleKernel {
     double a[kMaxM * kMaxM];
     for (int i = 0; i < m; ++i)
       for (int k = 0; k < m; ++k) a[i * m + k] = L.drow(c[i + 1])[k];
-    double d = det(a, m);
+    double d = determinant(a, m);
     return (d > 0) - (d < 0);
   }
   void set_cell(const List& c) {
     const int m = L.m;
-    double a[kMaxM * kMaxM], aj[kMaxM * kMaxM];
-    for (int i = 0; i < m; ++i)
+    double a[kMaxM * kMaxM], h[kMaxM];
+    for (int i = 0; i < m; ++i) {
       for (int k = 0; k < m; ++k) a[i * m + k] = L.drow(c[i + 1])[k];
-    double d = det(a, m);
-    ok = d != 0;
-    for (int j = 0; j < m && ok; ++j) {
-      std::copy(a, a + m * m, aj);
-      for (int i = 0; i < m; ++i) aj[i * m + j] = L.drow(c[i + 1])[m];
-      y[j] = det(aj, m) / d;
+      h[i] = L.drow(c[i + 1])[m];
     }
+    double d = determinant(a, m);
+    ok = d != 0;
+    if (ok) exact::cramer_solve(a, h, d, m, y.data());
   }
   int power(int q) const {
     if (!ok) return 0;
@@ -277,7 +264,7 @@ Wrap gift_wrap(Kernel& K, const Local& L, const List& seed) {
   };
   add(sorted_list(seed, m));
   for (std::size_t k = 0; k < W.cells.size() && !W.inconsistent; ++k) {
-    if (W.cells.size() > 20000) {
+    if (W.cells.size() > kMaxWrapCells) {
       W.inconsistent = true;
       break;
     }
@@ -451,12 +438,12 @@ bool check_link(const StarSettings& S, const Local& L, const std::vector<List>& 
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   const int N = L.N;
   auto pp = S.points->point(L.global[0]);
-  for (int attempt = 0; attempt < 6; ++attempt) {
+  for (int attempt = 0; attempt < kRayAttempts; ++attempt) {
     std::vector<double> x(N);
     double wsum = 1;
     for (int k = 0; k < N; ++k) x[k] = pp[k];
     for (int i = 1; i <= m; ++i) {
-      double w = 1 + attempt * i * 0.37;
+      double w = 1 + attempt * i * kRayWeightStep;
       wsum += w;
       auto v = S.points->point(L.global[cells[0][i]]);
       for (int k = 0; k < N; ++k) x[k] += w * v[k];
@@ -512,22 +499,22 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   }
   CellBox box = cell_box(L, c);
   // When the interval centre is too wide, enclose the exact values instead (slow, rare).
-  R.radius2 = box.ok ? from(box.R2) : exact::enclose(tc.squared_radius_exact());
+  R.radius2 = box.ok ? to_interval(box.R2) : exact::enclose(tc.squared_radius_exact());
   // Radius the tested set must cover: 2R (emptiness), R + sqrt(R^2 + claim) (protection claim)
   // and 2.25R (so that untested points have power > r^2 - 2rR >= 0.5 R^2, normally far above the
   // tested minimum; it enters the reported lower bound otherwise).
-  IA Rr = CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi));
+  IA Rr = exact::sqrt(IA(R.radius2.lo, R.radius2.hi));
   double need = (IA(2.25) * Rr).sup();
   // With r >= (1 + 2^-20)(R + sqrt(R^2 + claim)), r^2 - 2 r R exceeds the claim by far more than
   // the rounding of its interval evaluation below, so the printed margin stays above the claim.
   if (prot)
-    need = std::max(need, (IA(1 + 0x1p-20) * (Rr + CGAL::sqrt(IA(R.radius2.lo, R.radius2.hi) + ia(prot->enclosure())))).sup());
+    need = std::max(need, (IA(1 + 0x1p-20) * (Rr + exact::sqrt(IA(R.radius2.lo, R.radius2.hi) + to_interval_number(prot->enclosure())))).sup());
   need_radius = std::max(need_radius, need);
   exact::Interval margin{INFINITY, INFINITY};
   for (int q = 1; q < L.size(); ++q) {
     if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
     int s = tc.power_sign(q, ctx);
-    exact::Interval pw = box.ok ? from(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
+    exact::Interval pw = box.ok ? to_interval(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
     // The printed margin must never contradict an exact sign (the consistency guard in
     // certificate.hpp checks it): where the box enclosure is too loose to show what the exact
     // sign proved, print the enclosure of the exact value instead. enclose() is monotone, so
@@ -586,28 +573,28 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
   exact::TangentSpace T(*S.system, P.point(p));
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
-    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T.basis(i, a)));
   const std::vector<IA> G = gram_enclosure(T, m);
-  for (const IA& x : U) out.basis_enclosure.push_back(from(x));  // for check 7 (no second exact basis)
-  for (const IA& x : G) out.gram_enclosure.push_back(from(x));
+  for (const IA& x : U) out.basis_enclosure.push_back(to_interval(x));  // for check 7 (no second exact basis)
+  for (const IA& x : G) out.gram_enclosure.push_back(to_interval(x));
   auto dist = [&](int g) {
     double s = 0;
     for (int k = 0; k < N; ++k) s += (P.point(g)[k] - P.point(p)[k]) * (P.point(g)[k] - P.point(p)[k]);
     return std::sqrt(s);
   };
   // A first guess; the verification proves whether it was large enough and grows it if not.
-  double r = 3 * S.grid->spacing();
+  double r = kInitialRadiusGridCells * S.grid->spacing();
   if (claimed && !claimed->empty()) {
     r = 0;
     for (const auto& s : *claimed)
-      for (int v : s) r = std::max(r, 1.6 * dist(v));  // vertices are within 2R of p; 2.25R is needed
+      for (int v : s) r = std::max(r, kClaimedVertexRadiusFactor * dist(v));
   }
-  for (int iter = 0; iter < 64; ++iter) {
+  for (int iter = 0; iter < kMaxRadiusRuns; ++iter) {
     Local L = make_local(S, &T, U, G, p, r);
     out.search_radius = r;
     out.searched_all = L.all;
     auto grow = [&](double need) {
-      r = std::max(need * 1.0625, r * 1.25);
+      r = std::max(need * kNeededRadiusMargin, r * kMinRadiusGrowth);
       return !L.all;
     };
     std::optional<List> seed;
@@ -621,7 +608,7 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
           if (v != p) c[k++] = L.local_of(v), missing_vertex = missing_vertex || c[k - 1] < 0;
         lists.push_back(sorted_list(c, m));
       }
-      if (missing_vertex && grow(2 * r)) continue;  // cannot happen with r >= 1.6 |v - p|; kept as a guard
+      if (missing_vertex && grow(kOpenStarRadiusGrowth * r)) continue;  // cannot happen with r >= kClaimedVertexRadiusFactor |v - p|; kept as a guard
       Verification V = verify(S, L, lists, ctx);
       if (V.need_radius > r && grow(V.need_radius)) continue;
       out.claimed = V.cells;
@@ -641,7 +628,7 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
     if (seed) {
       DoubleKernel K{L};
       Wrap W = gift_wrap(K, L, *seed);
-      if (W.open && !W.inconsistent && grow(2 * r)) continue;
+      if (W.open && !W.inconsistent && grow(kOpenStarRadiusGrowth * r)) continue;
       if (!W.open && !W.inconsistent) {
         Verification V = verify(S, L, W.cells, ctx);
         if (V.need_radius > r && grow(V.need_radius)) continue;
@@ -655,13 +642,13 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
     // Exact gift-wrapping from an exact vertex of the power cell.
     std::optional<List> exact_seed = power_cell_vertex<mpq_class>(m, L.size(), [&](int q) { return L.chart().row_exact(q); });
     if (!exact_seed) {
-      if (grow(2 * r)) continue;
+      if (grow(kOpenStarRadiusGrowth * r)) continue;
       out.reason = "the power cell of p is unbounded even with every sample point: p has no complete star";
       return out;
     }
     ExactKernel K{L, ctx, std::nullopt};
     Wrap W = gift_wrap(K, L, *exact_seed);
-    if (W.open && !W.inconsistent && grow(2 * r)) continue;
+    if (W.open && !W.inconsistent && grow(kOpenStarRadiusGrowth * r)) continue;
     std::vector<List> cells = W.cells;
     Verification V = verify(S, L, cells, ctx);
     if (V.need_radius > r && grow(V.need_radius)) continue;
@@ -690,13 +677,13 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
   exact::TangentSpace T(*S.system, P.point(p));
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
-    for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T.basis(i, a)));
+    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T.basis(i, a)));
   const std::vector<IA> G = gram_enclosure(T, m);
-  double r = 3 * S.grid->spacing();
+  double r = kInitialRadiusGridCells * S.grid->spacing();
   for (int v : s) {
     double d2 = 0;
     for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
-    r = std::max(r, 2.5 * std::sqrt(d2));
+    r = std::max(r, kCellVertexRadiusFactor * std::sqrt(d2));
   }
   for (;;) {
     Local L = make_local(S, &T, U, G, p, r);
@@ -706,7 +693,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
     double need = 0;
     CellReport R = test_list(S, L, sorted_list(c, m), need, ctx);
     if (need <= r || L.all) return R;
-    r = std::max(need * 1.0625, r * 1.25);
+    r = std::max(need * kNeededRadiusMargin, r * kMinRadiusGrowth);
   }
 }
 
@@ -719,7 +706,7 @@ int greater(const IA& a, const IA& b) {
   return -1;
 }
 int greater(const mpq_class& a, const mpq_class& b) { return a > b ? 1 : 0; }
-IA lower_max(const IA& a, const IA& b) { return IA(std::max(a.inf(), b.inf()), std::max(a.sup(), b.sup())); }
+IA lower_max(const IA& a, const IA& b) { return exact::interval_max(a, b); }
 mpq_class lower_max(const mpq_class& a, const mpq_class& b) { return a > b ? a : b; }
 
 // The conditions of Definition 3.1 for one cell, in number type T (IA: enclosures; mpq_class:
@@ -737,24 +724,23 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
     if (g < 0) undecided = true;
     return g == 1 ? what : "";
   };
-  std::array<T, kMaxM * kMaxM> A, Aj;
+  std::array<T, kMaxM * kMaxM> A;
+  std::array<T, kMaxM> h;
   A.fill(T(0));
-  Aj.fill(T(0));
-  for (int i = 0; i < m; ++i)
+  h.fill(T(0));
+  for (int i = 0; i < m; ++i) {
     for (int a = 0; a < m; ++a) A[i * m + a] = b[c[i + 1] * m + a];
-  T d = det(A.data(), m);
+    h[i] = t[c[i + 1]];
+  }
+  T d = determinant(A.data(), m);
   if (greater(d, T(0)) != 1 && greater(T(0), d) != 1) {
     if (greater(d, T(0)) == 0 && greater(T(0), d) == 0) return "degenerate projection";
     undecided = true;
     return "";
   }
-  std::array<T, kMaxM> y;  // y = 2w, the projected circumcentre c' = p + U w
+  std::array<T, kMaxM> y;  // y = 2w, the projected circumcentre c' = p + U w (Cramer's rule)
   y.fill(T(0));
-  for (int j = 0; j < m; ++j) {
-    Aj = A;
-    for (int i = 0; i < m; ++i) Aj[i * m + j] = t[c[i + 1]];
-    y[j] = det(Aj.data(), m) / d;
-  }
+  exact::cramer_solve(A.data(), h.data(), d, m, y.data());
   T r2(0);
   for (int a = 0; a < m; ++a)
     for (int k = 0; k < m; ++k) r2 += y[a] * G[a * m + k] * y[k];
@@ -792,7 +778,7 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
     for (int a = 0; a < j; ++a)
       for (int k = 0; k < j; ++k)
         g[a * j + k] = dm[idx[0] * V + idx[a + 1]] + dm[idx[0] * V + idx[k + 1]] - dm[idx[a + 1] * V + idx[k + 1]];
-    return det(g.data(), j);
+    return determinant(g.data(), j);
   };
   std::array<int, kMaxM + 1> all;
   for (int i = 0; i < V; ++i) all[i] = i;
@@ -813,7 +799,7 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
   // Points projected beyond 2r + delta from p are certainly protected (interval instantiation
   // only; the exact one tests every point). Not IA(INFINITY): a point interval must be finite.
   IA reach2(0);
-  if constexpr (std::is_same_v<T, IA>) reach2 = CGAL::square(IA(2) * CGAL::sqrt(r2) + delta);
+  if constexpr (std::is_same_v<T, IA>) reach2 = exact::square(IA(2) * exact::sqrt(r2) + delta);
   for (int k = 1; k < L.size(); ++k) {
     const int q = by_t.empty() ? k : by_t[k - 1];
     if (q < 0) break;  // end of the relevant points
@@ -839,24 +825,6 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
   return "";
 }
 
-std::vector<mpq_class> inverse(std::vector<mpq_class> A, int n) {
-  std::vector<mpq_class> X(n * n, mpq_class(0));
-  for (int i = 0; i < n; ++i) X[i * n + i] = 1;
-  for (int c = 0; c < n; ++c) {
-    int piv = c;
-    while (A[piv * n + c] == 0) ++piv;  // G is positive definite: a pivot exists
-    for (int j = 0; j < n; ++j) std::swap(A[c * n + j], A[piv * n + j]), std::swap(X[c * n + j], X[piv * n + j]);
-    mpq_class inv = 1 / A[c * n + c];
-    for (int j = 0; j < n; ++j) A[c * n + j] *= inv, X[c * n + j] *= inv;
-    for (int i = 0; i < n; ++i) {
-      if (i == c || A[i * n + c] == 0) continue;
-      mpq_class f = A[i * n + c];
-      for (int j = 0; j < n; ++j) A[i * n + j] -= f * A[c * n + j], X[i * n + j] -= f * X[c * n + j];
-    }
-  }
-  return X;
-}
-
 }  // namespace
 
 void SecureParams::prepare() {
@@ -879,22 +847,22 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
   std::optional<exact::TangentSpace> T;
   std::vector<IA> U(N * m), Gram(m * m);
   if (report && report->basis_enclosure.size() == U.size() && report->gram_enclosure.size() == Gram.size()) {
-    for (std::size_t i = 0; i < U.size(); ++i) U[i] = ia(report->basis_enclosure[i]);
-    for (std::size_t i = 0; i < Gram.size(); ++i) Gram[i] = ia(report->gram_enclosure[i]);
+    for (std::size_t i = 0; i < U.size(); ++i) U[i] = to_interval_number(report->basis_enclosure[i]);
+    for (std::size_t i = 0; i < Gram.size(); ++i) Gram[i] = to_interval_number(report->gram_enclosure[i]);
   } else {
     T.emplace(*S.system, P.point(p));
     for (int i = 0; i < N; ++i)
-      for (int a = 0; a < m; ++a) U[i * m + a] = ia(exact::enclose(T->basis(i, a)));
+      for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T->basis(i, a)));
     Gram = gram_enclosure(*T, m);
   }
   // The points of W = B(p, 5 eps): a superset from the grid (testing more points is stricter),
   // grown if needed to contain the cells' vertices.
-  double r = 5 * exact::enclose(sp.eps).hi;
+  double r = kSecureNeighbourhoodEps * exact::enclose(sp.eps).hi;
   for (const auto& s : star)
     for (int v : s) {
       double d2 = 0;
       for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
-      r = std::max(r, std::sqrt(d2) * 1.0625);
+      r = std::max(r, std::sqrt(d2) * kNeededRadiusMargin);
     }
   Local L = make_local(S, T ? &*T : nullptr, U, Gram, p, r, /*tangent_only=*/true);
   if (L.size() > kMaxSecureNeighbourhood) {  // an informational check: bounded work per point
@@ -904,17 +872,9 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
   std::vector<mpq_class> Gq, Giq;  // exact G = U^T U and its inverse, only when needed
   std::vector<IA> G(L.gram), Gi(m * m);
   {  // enclosure of G^-1 by the adjugate: (G^-1)_ak = (-1)^(a+k) det(G without row k, column a) / det G
-    IA d = det(G.data(), m);
-    std::array<IA, kMaxM * kMaxM> minor;
-    for (int a = 0; a < m; ++a)
-      for (int k = 0; k < m; ++k) {
-        int n = 0;
-        for (int i = 0; i < m; ++i)
-          for (int j = 0; j < m; ++j)
-            if (i != k && j != a) minor[n++] = G[i * m + j];
-        IA mk = m == 1 ? IA(1) : det(minor.data(), m - 1);
-        Gi[a * m + k] = ((a + k) % 2 ? -mk : mk) / d;  // G is positive definite: d > 0
-      }
+    const IA d = determinant(G.data(), m);
+    exact::adjugate(G.data(), m, Gi.data());
+    for (IA& x : Gi) x = x / d;  // G is positive definite: d > 0
   }
   std::vector<IA> b(L.size() * m, IA(0));  // b(x) = U^T (x - p) per local point, row-major
   std::vector<IA> t(L.size(), IA(0));
@@ -926,7 +886,7 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
   // The local points that can matter for delta-protection, by increasing lower bound of their
   // projected squared distance to p: a point projected farther than 2r + delta from p is
   // protected for every cell (r < eps, so 2 eps + delta bounds every cell's reach).
-  const double reach_all = (CGAL::square(IA(2) * CGAL::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
+  const double reach_all = (exact::square(IA(2) * exact::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
                                          IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)))
                                .sup();
   std::vector<int> by_t;
@@ -934,8 +894,8 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
     if (!(t[l].inf() > reach_all)) by_t.push_back(l);
   std::sort(by_t.begin(), by_t.end(), [&](int a, int b2) { return t[a].inf() < t[b2].inf(); });
   by_t.push_back(-1);  // end marker
-  const IA eps2 = ia(sp.eps2_enclosure), delta = ia(sp.delta_enclosure), ups2 = ia(sp.upsilon0_2_enclosure),
-           short2 = ia(sp.shortest2_enclosure);
+  const IA eps2 = to_interval_number(sp.eps2_enclosure), delta = to_interval_number(sp.delta_enclosure),
+           ups2 = to_interval_number(sp.upsilon0_2_enclosure), short2 = to_interval_number(sp.shortest2_enclosure);
   std::vector<mpq_class> bq;  // exact rows, filled on first need
   std::vector<mpq_class> tq;
   for (const auto& s : star) {
@@ -952,7 +912,9 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
         Gq.assign(m * m, mpq_class(0));
         for (int a = 0; a < m; ++a)
           for (int k = 0; k < m; ++k) Gq[a * m + k] = Tq.gram(a, k);
-        Giq = inverse(Gq, m);
+        auto inv = exact::inverse(Gq, m);
+        if (!inv) throw std::logic_error("check 7: singular Gram matrix (the exact basis has full rank)");
+        Giq = std::move(*inv);
         bq.assign(L.size() * m, mpq_class(0));
         tq.assign(L.size(), mpq_class(0));
         for (int l = 1; l < L.size(); ++l) {

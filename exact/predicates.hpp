@@ -6,6 +6,8 @@
 //   filter_stats.hpp        FilterContext / FilterStats (per-predicate filter-failure counts)
 //   number_types.hpp        RationalConstant, exact conversions
 //   interval.hpp            Interval, Box, UpwardRounding (batch guard)
+//   interval_arithmetic.hpp IntervalNumber: interval arithmetic for a consumer's own enclosures
+//   linear_algebra.hpp      determinants, Cramer's rule, adjugate, exact rational solve/inverse
 // Certified reporting and root isolation live in enclosure.hpp and krawczyk.hpp.
 //
 // Typical use in a certifier (one FilterContext per thread):

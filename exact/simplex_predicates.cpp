@@ -5,6 +5,7 @@
 #include <string>
 
 #include "exact/detail/cgal_number_types.hpp"
+#include "exact/detail/filtered.hpp"
 #include "exact/detail/kernels.hpp"
 
 namespace delcert::exact {
@@ -12,6 +13,7 @@ namespace delcert::exact {
 using detail::certain_sign;
 using detail::count_result;
 using detail::EX;
+using detail::filtered_sign;
 using detail::IA;
 using detail::kUndecided;
 
@@ -24,9 +26,6 @@ void check_finite(const double* x, int N) {
   for (int i = 0; i < N; ++i)
     if (!std::isfinite(x[i])) throw std::invalid_argument("non-finite coordinate: exact predicates need finite doubles");
 }
-
-// Interval maximum: [max lo, max hi] encloses max(x, y) for x, y in the operands.
-IA interval_max(const IA& a, const IA& b) { return IA(std::max(a.inf(), b.inf()), std::max(a.sup(), b.sup())); }
 
 // Enclosure of |a - b|^2 (the caller holds upward rounding).
 //
@@ -118,62 +117,52 @@ int thickness_sign(std::span<const double* const> vertices, int N, const Rationa
     return s;
   }
   const int jj = j * j;
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact) {
-    IA d[(detail::kMaxSimplexDim + 1) * (detail::kMaxSimplexDim + 1)];
-    IA delta2(0);
-    for (int a = 0; a <= j; ++a) {
-      d[a * (j + 1) + a] = IA(0);
-      for (int b = a + 1; b <= j; ++b) {
-        d[a * (j + 1) + b] = d[b * (j + 1) + a] = interval_squared_distance(vertices[a], vertices[b], N);
-        delta2 = interval_max(delta2, d[a * (j + 1) + b]);
-      }
-    }
-    IA gt, gf[detail::kMaxSimplexDim + 1];
-    detail::dispatch<1, detail::kMaxSimplexDim>(j, [&](auto J) { detail::thickness_terms<J()>(d, gt, gf); });
-    const int gts = certain_sign(gt);
-    if (gts == 0) {
-      // Exactly degenerate (gt is the point interval [0, 0]): Upsilon = 0.
-      const int s = -gamma_squared.sign();
-      count_result(ctx, PredicateKind::thickness, false, s);
-      return s;
-    }
-    if (gts == 1) {
-      // gt > 0: every facet Gram determinant is positive too, and the test per vertex is
-      // gt - 2 Gamma^2 j^2 Delta^2 gf_l >= 0. The answer is the minimum of the per-vertex signs.
-      const IA scale = IA(2.0 * jj) * detail::to_ia(gamma_squared.enclosure()) * delta2;
-      int result = 1;
-      bool undecided = false;
-      for (int l = 0; l <= j; ++l) {
-        const int s = certain_sign(gt - scale * gf[l]);
-        if (s == -1) {
-          result = -1;
-          undecided = false;
-          break;
+  return filtered_sign(
+      ctx, PredicateKind::thickness,
+      [&] {
+        IA d[(detail::kMaxSimplexDim + 1) * (detail::kMaxSimplexDim + 1)];
+        IA delta2(0);
+        for (int a = 0; a <= j; ++a) {
+          d[a * (j + 1) + a] = IA(0);
+          for (int b = a + 1; b <= j; ++b) {
+            d[a * (j + 1) + b] = d[b * (j + 1) + a] = interval_squared_distance(vertices[a], vertices[b], N);
+            delta2 = interval_max(delta2, d[a * (j + 1) + b]);
+          }
         }
-        if (s == kUndecided) undecided = true;
-        else result = std::min(result, s);
-      }
-      if (!undecided) {
-        count_result(ctx, PredicateKind::thickness, false, result);
+        IA gt, gf[detail::kMaxSimplexDim + 1];
+        detail::dispatch<1, detail::kMaxSimplexDim>(j, [&](auto J) { detail::thickness_terms<J()>(d, gt, gf); });
+        const int gts = certain_sign(gt);
+        // Exactly degenerate (gt is the point interval [0, 0]): Upsilon = 0.
+        if (gts == 0) return -gamma_squared.sign();
+        if (gts != 1) return kUndecided;
+        // gt > 0: every facet Gram determinant is positive too, and the test per vertex is
+        // gt - 2 Gamma^2 j^2 Delta^2 gf_l >= 0. The answer is the minimum of the per-vertex signs.
+        const IA scale = IA(2.0 * jj) * detail::to_ia(gamma_squared.enclosure()) * delta2;
+        int result = 1;
+        bool undecided = false;
+        for (int l = 0; l <= j; ++l) {
+          const int s = certain_sign(gt - scale * gf[l]);
+          if (s == -1) {
+            result = -1;
+            undecided = false;
+            break;
+          }
+          if (s == kUndecided) undecided = true;
+          else result = std::min(result, s);
+        }
+        return undecided ? kUndecided : result;
+      },
+      [&] {
+        // Exact: gamma^2 = num/den, den > 0: sign(den gt - 2 j^2 num Delta^2 gf_l).
+        const ExactThickness t = exact_thickness_terms(vertices, N);
+        if (t.gt.is_zero()) return -gamma_squared.sign();
+        const EX num = detail::to_ex(gamma_squared.value().get_num()), den = detail::to_ex(gamma_squared.value().get_den());
+        const EX dgt = den * t.gt;
+        const EX scale = EX(2 * jj) * num * t.delta2;
+        int result = 1;
+        for (int l = 0; l <= j; ++l) result = std::min(result, detail::exact_sign(dgt - scale * t.gf[l]));
         return result;
-      }
-    }
-  }
-  // Exact: gamma^2 = num/den, den > 0: sign(den gt - 2 j^2 num Delta^2 gf_l).
-  const ExactThickness t = exact_thickness_terms(vertices, N);
-  int result;
-  if (t.gt.is_zero()) {
-    result = -gamma_squared.sign();
-  } else {
-    const EX num = detail::to_ex(gamma_squared.value().get_num()), den = detail::to_ex(gamma_squared.value().get_den());
-    const EX dgt = den * t.gt;
-    const EX scale = EX(2 * jj) * num * t.delta2;
-    result = 1;
-    for (int l = 0; l <= j; ++l) result = std::min(result, detail::exact_sign(dgt - scale * t.gf[l]));
-  }
-  count_result(ctx, PredicateKind::thickness, true, result);
-  return result;
+      });
 }
 
 mpq_class thickness_squared_exact(std::span<const double* const> vertices, int N) {
@@ -201,35 +190,23 @@ int compare_squared_distances(const double* a, const double* b, const double* c,
   check_finite(b, N);
   check_finite(c, N);
   check_finite(d, N);
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact) {
-    const int s = certain_sign(interval_squared_distance(a, b, N) - interval_squared_distance(c, d, N));
-    if (s != kUndecided) {
-      count_result(ctx, PredicateKind::squared_distance, false, s);
-      return s;
-    }
-  }
-  const int s = detail::exact_sign(exact_squared_distance(a, b, N) - exact_squared_distance(c, d, N));
-  count_result(ctx, PredicateKind::squared_distance, true, s);
-  return s;
+  return filtered_sign(
+      ctx, PredicateKind::squared_distance,
+      [&] { return interval_squared_distance(a, b, N) - interval_squared_distance(c, d, N); },
+      [&] { return exact_squared_distance(a, b, N) - exact_squared_distance(c, d, N); });
 }
 
 int compare_squared_distance(const double* a, const double* b, const RationalConstant& r2, int N, FilterContext& ctx) {
   check_finite(a, N);
   check_finite(b, N);
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact) {
-    const int s = certain_sign(interval_squared_distance(a, b, N) - detail::to_ia(r2.enclosure()));
-    if (s != kUndecided) {
-      count_result(ctx, PredicateKind::squared_distance, false, s);
-      return s;
-    }
-  }
-  // r2 = num/den, den > 0: sign(den |a-b|^2 - num).
-  const EX num = detail::to_ex(r2.value().get_num()), den = detail::to_ex(r2.value().get_den());
-  const int s = detail::exact_sign(den * exact_squared_distance(a, b, N) - num);
-  count_result(ctx, PredicateKind::squared_distance, true, s);
-  return s;
+  return filtered_sign(
+      ctx, PredicateKind::squared_distance,
+      [&] { return interval_squared_distance(a, b, N) - detail::to_ia(r2.enclosure()); },
+      [&] {
+        // r2 = num/den, den > 0: sign(den |a-b|^2 - num).
+        const EX num = detail::to_ex(r2.value().get_num()), den = detail::to_ex(r2.value().get_den());
+        return den * exact_squared_distance(a, b, N) - num;
+      });
 }
 
 mpq_class squared_distance_exact(const double* a, const double* b, int N) {
@@ -255,27 +232,24 @@ int ambient_power_sign(const RationalPoint& x, const double* p, const double* q,
   check_finite(p, N);
   check_finite(q, N);
   // |x - q|^2 - |x - p|^2 = sum_i (q_i - p_i)(q_i + p_i - 2 x_i).
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact) {
-    IA s(0);
-    for (int i = 0; i < N; ++i)
-      s = s + (IA(q[i]) - IA(p[i])) * (IA(q[i]) + IA(p[i]) - IA(2) * detail::to_ia(x.enclosure()[i]));
-    const int r = certain_sign(s);
-    if (r != kUndecided) {
-      count_result(ctx, PredicateKind::ambient_power, false, r);
-      return r;
-    }
-  }
-  // With x_i = X_i / D, D > 0: sign = sign(sum_i (q_i - p_i)(D (q_i + p_i) - 2 X_i)), all exact.
-  const EX D = detail::to_ex(x.denominator());
-  EX s(0);
-  for (int i = 0; i < N; ++i) {
-    const EX qi(q[i]), pi(p[i]);
-    s = s + (qi - pi) * (D * (qi + pi) - EX(2) * detail::to_ex(x.numerators()[i]));
-  }
-  const int r = detail::exact_sign(s);
-  count_result(ctx, PredicateKind::ambient_power, true, r);
-  return r;
+  return filtered_sign(
+      ctx, PredicateKind::ambient_power,
+      [&] {
+        IA s(0);
+        for (int i = 0; i < N; ++i)
+          s = s + (IA(q[i]) - IA(p[i])) * (IA(q[i]) + IA(p[i]) - IA(2) * detail::to_ia(x.enclosure()[i]));
+        return s;
+      },
+      [&] {
+        // With x_i = X_i / D, D > 0: sign = sign(sum_i (q_i - p_i)(D (q_i + p_i) - 2 X_i)), all exact.
+        const EX D = detail::to_ex(x.denominator());
+        EX s(0);
+        for (int i = 0; i < N; ++i) {
+          const EX qi(q[i]), pi(p[i]);
+          s = s + (qi - pi) * (D * (qi + pi) - EX(2) * detail::to_ex(x.numerators()[i]));
+        }
+        return s;
+      });
 }
 
 int ambient_power_sign_on_box(const Box& x, const double* p, const double* q) {

@@ -5,14 +5,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "exact/detail/filtered.hpp"
 #include "exact/detail/kernels.hpp"
 #include "exact/detail/tangent_impl.hpp"
+#include "exact/linear_algebra.hpp"
 
 namespace delcert::exact {
 
 using detail::certain_sign;
 using detail::count_result;
 using detail::EX;
+using detail::filtered_sign;
 using detail::IA;
 using detail::kUndecided;
 
@@ -109,6 +112,38 @@ void interval_row(const TangentSpace::Impl& s, const double* x, IA* row) {
 template <int M>
 void exact_row(const TangentSpace::Impl& s, const double* x, EX* row) {
   detail::chart_row<M>(s.U_exact.data(), [&](int i) { return EX(x[i]) - s.p_exact[i]; }, s.N, row);
+}
+
+// The chart row of x in either number type (the same overloaded name for the templates below).
+template <int M>
+void chart_row_of(const TangentSpace::Impl& s, const double* x, IA* row) {
+  interval_row<M>(s, x, row);
+}
+template <int M>
+void chart_row_of(const TangentSpace::Impl& s, const double* x, EX* row) {
+  exact_row<M>(s, x, row);
+}
+
+// The chart rows of `points` (and of `query` when given, after them) into buf, L = M + 1 entries
+// each, with rows[i] pointing at the row of points[i]; returns the query's row.
+template <int M, class NT>
+const NT* chart_rows_of(const TangentSpace::Impl& s, std::span<const double* const> points, const double* query, NT* buf,
+                        const NT** rows) {
+  constexpr int L = M + 1;
+  for (int i = 0; i < L; ++i) {
+    chart_row_of<M>(s, points[i], buf + i * L);
+    rows[i] = buf + i * L;
+  }
+  if (query) chart_row_of<M>(s, query, buf + L * L);
+  return buf + L * L;
+}
+
+// The interval coefficients and k0 of a cell's power test (see power_cell) from the bounds
+// TangentChart::cell stored: coef_j in [e[2j], e[2j+1]], k0 in [e[2M+2], e[2M+3]].
+template <int M>
+void stored_power_cell(const double* e, IA* coef, IA& k0) {
+  for (int j = 0; j <= M; ++j) coef[j] = IA(e[2 * j], e[2 * j + 1]);
+  k0 = IA(e[2 * (M + 1)], e[2 * (M + 1) + 1]);
 }
 
 // Moves local index 0 (p) to the front by one transposition; returns the permutation's sign.
@@ -212,23 +247,20 @@ int TangentChart::orientation(std::span<const int> vertices, FilterContext& ctx)
   int order[kMaxRowLength];
   const int parity = put_origin_first(vertices, order);
   const bool origin = order[0] == 0;
-  detail::EnsureUpward guard;
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(c.m, [&](auto Mc) {
     constexpr int M = Mc();
-    if (!ctx.force_exact) {
-      const IA* rows[M + 1];
-      for (int i = 0; i <= M; ++i) rows[i] = c.row(order[i]);
-      const int s = certain_sign(detail::orientation_det<M>(rows, origin));
-      if (s != kUndecided) {
-        count_result(ctx, PredicateKind::tangent_orientation, false, s);
-        return parity * s;
-      }
-    }
-    const EX* rows[M + 1];
-    for (int i = 0; i <= M; ++i) rows[i] = c.exact_row(order[i]);
-    const int s = detail::exact_sign(detail::orientation_det<M>(rows, origin));
-    count_result(ctx, PredicateKind::tangent_orientation, true, s);
-    return parity * s;
+    return parity * filtered_sign(
+                        ctx, PredicateKind::tangent_orientation,
+                        [&] {
+                          const IA* rows[M + 1];
+                          for (int i = 0; i <= M; ++i) rows[i] = c.row(order[i]);
+                          return detail::orientation_det<M>(rows, origin);
+                        },
+                        [&] {
+                          const EX* rows[M + 1];
+                          for (int i = 0; i <= M; ++i) rows[i] = c.exact_row(order[i]);
+                          return detail::orientation_det<M>(rows, origin);
+                        });
   });
 }
 
@@ -260,13 +292,13 @@ TangentCell TangentChart::cell(std::span<const int> vertices, FilterContext& ctx
     cell.enclosures_[2 * (M + 1)] = k0.inf();
     cell.enclosures_[2 * (M + 1) + 1] = k0.sup();
     cell.filter_usable_ = finite;
-    int s = ctx.force_exact ? kUndecided : certain_sign(coef[M]);
-    const bool exact_path = s == kUndecided;
-    if (exact_path) {
-      cell.ensure_exact();
-      s = detail::exact_sign(cell.exact_->coef[M]);
-    }
-    count_result(ctx, PredicateKind::tangent_orientation, exact_path, s);
+    // det B = coef_m (see power_cell).
+    const int s = filtered_sign(
+        ctx, PredicateKind::tangent_orientation, [&] { return coef[M]; },
+        [&] {
+          cell.ensure_exact();
+          return cell.exact_->coef[M];
+        });
     cell.det_sign_ = s;
     cell.orientation_ = parity * s;
   });
@@ -299,24 +331,20 @@ int TangentCell::power_sign(int query, FilterContext& ctx) const {
     count_result(ctx, PredicateKind::power, false, 0);
     return 0;
   }
-  detail::EnsureUpward guard;
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(m_, [&](auto Mc) {
     constexpr int M = Mc();
-    if (!ctx.force_exact && filter_usable_) {
-      IA coef[M + 1];
-      for (int j = 0; j <= M; ++j) coef[j] = IA(enclosures_[2 * j], enclosures_[2 * j + 1]);
-      const IA k0(enclosures_[2 * (M + 1)], enclosures_[2 * (M + 1) + 1]);
-      const int s = certain_sign(detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_));
-      if (s != kUndecided) {
-        count_result(ctx, PredicateKind::power, false, s);
-        return det_sign_ * s;
-      }
-    }
-    ensure_exact();
-    const int s = detail::exact_sign(
-        detail::power_value<M>(exact_->coef.data(), exact_->k0, chart_->exact_row(query), origin_ref_));
-    count_result(ctx, PredicateKind::power, true, s);
-    return det_sign_ * s;
+    return det_sign_ * filtered_sign(
+                           ctx, PredicateKind::power, filter_usable_,
+                           [&] {
+                             IA coef[M + 1], k0;
+                             stored_power_cell<M>(enclosures_.data(), coef, k0);
+                             return detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_);
+                           },
+                           [&] {
+                             ensure_exact();
+                             return detail::power_value<M>(exact_->coef.data(), exact_->k0, chart_->exact_row(query),
+                                                           origin_ref_);
+                           });
   });
 }
 
@@ -326,61 +354,28 @@ int TangentCell::power_sign(int query, const RationalConstant& delta, FilterCont
     count_result(ctx, PredicateKind::power_threshold, false, 0);
     return 0;
   }
-  detail::EnsureUpward guard;
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(m_, [&](auto Mc) {
     constexpr int M = Mc();
-    if (!ctx.force_exact && filter_usable_) {
-      IA coef[M + 1];
-      for (int j = 0; j <= M; ++j) coef[j] = IA(enclosures_[2 * j], enclosures_[2 * j + 1]);
-      const IA k0(enclosures_[2 * (M + 1)], enclosures_[2 * (M + 1) + 1]);
-      // det M(q) - delta det B, det B = coef_m.
-      const IA v = detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_) -
-                   detail::to_ia(delta.enclosure()) * coef[M];
-      const int s = certain_sign(v);
-      if (s != kUndecided) {
-        count_result(ctx, PredicateKind::power_threshold, false, s);
-        return det_sign_ * s;
-      }
-    }
-    ensure_exact();
-    // delta = num/den with den > 0: sign(det M - delta det B) = sign(den det M - num det B).
-    const EX num = detail::to_ex(delta.value().get_num()), den = detail::to_ex(delta.value().get_den());
-    const EX v =
-        den * detail::power_value<M>(exact_->coef.data(), exact_->k0, chart_->exact_row(query), origin_ref_) -
-        num * exact_->coef[M];
-    const int s = detail::exact_sign(v);
-    count_result(ctx, PredicateKind::power_threshold, true, s);
-    return det_sign_ * s;
+    return det_sign_ * filtered_sign(
+                           ctx, PredicateKind::power_threshold, filter_usable_,
+                           [&] {
+                             IA coef[M + 1], k0;
+                             stored_power_cell<M>(enclosures_.data(), coef, k0);
+                             // det M(q) - delta det B, det B = coef_m.
+                             return detail::power_value<M>(coef, k0, chart_->row(query), origin_ref_) -
+                                    detail::to_ia(delta.enclosure()) * coef[M];
+                           },
+                           [&] {
+                             ensure_exact();
+                             // delta = num/den with den > 0: sign(det M - delta det B) = sign(den det M - num det B).
+                             const EX num = detail::to_ex(delta.value().get_num());
+                             const EX den = detail::to_ex(delta.value().get_den());
+                             return den * detail::power_value<M>(exact_->coef.data(), exact_->k0,
+                                                                 chart_->exact_row(query), origin_ref_) -
+                                    num * exact_->coef[M];
+                           });
   });
 }
-
-namespace {
-// Solves the square rational system A y = h by Gaussian elimination with pivoting.
-std::vector<mpq_class> solve(std::vector<mpq_class> A, std::vector<mpq_class> h, int n) {
-  for (int c = 0; c < n; ++c) {
-    int piv = c;
-    while (piv < n && A[piv * n + c] == 0) ++piv;
-    if (piv == n) throw std::domain_error("degenerate cell: its projection to T_p has no unique centre");
-    if (piv != c) {
-      for (int j = 0; j < n; ++j) std::swap(A[c * n + j], A[piv * n + j]);
-      std::swap(h[c], h[piv]);
-    }
-    for (int i = c + 1; i < n; ++i) {
-      if (A[i * n + c] == 0) continue;
-      mpq_class f = A[i * n + c] / A[c * n + c];
-      for (int j = c; j < n; ++j) A[i * n + j] -= f * A[c * n + j];
-      h[i] -= f * h[c];
-    }
-  }
-  std::vector<mpq_class> y(n);
-  for (int i = n - 1; i >= 0; --i) {
-    mpq_class acc = h[i];
-    for (int j = i + 1; j < n; ++j) acc -= A[i * n + j] * y[j];
-    y[i] = acc / A[i * n + i];
-  }
-  return y;
-}
-}  // namespace
 
 std::vector<mpq_class> TangentCell::centre_exact() const {
   if (det_sign_ == 0) throw std::domain_error("degenerate cell: its projection to T_p has no unique centre");
@@ -396,12 +391,13 @@ std::vector<mpq_class> TangentCell::centre_exact() const {
     for (int a = 0; a < m; ++a) B[i * m + a] = r[i + 1][a] - r[0][a];
     h[i] = r[i + 1][m] - r[0][m];
   }
-  auto y = solve(B, h, m);
+  const auto y = solve(B, h, m);
+  if (!y) throw std::domain_error("degenerate cell: its projection to T_p has no unique centre");
   const auto& sp = *chart_->space_impl;
   std::vector<mpq_class> c(N);
   for (int i = 0; i < N; ++i) {
     mpq_class acc = 0;
-    for (int a = 0; a < m; ++a) acc += sp.U_rational[i * m + a] * y[a];
+    for (int a = 0; a < m; ++a) acc += sp.U_rational[i * m + a] * (*y)[a];
     c[i] = to_rational(sp.p[i]) + acc / 2;
   }
   return c;
@@ -471,7 +467,7 @@ void face_prepare(const NT* const* rows, const NT* A, int m, NT* DA, NT* coef) {
     kh[i * C + K] = rows[i][m];
   }
   NT table[1u << C];
-  detail::minor_table<K, C>(kh, table);
+  minor_table<K, C>(kh, table);
   const unsigned full = (1u << C) - 1;
   for (int j = 0; j < C; ++j) {
     const NT& minor = table[full ^ (1u << j)];
@@ -526,14 +522,12 @@ TangentFace TangentChart::face(std::span<const int> vertices, FilterContext& ctx
   d->usable = finite;
   TangentFace face;
   face.data_ = d;
-  int s = (ctx.force_exact || !finite) ? kUndecided : certain_sign(d->coef[k]);
-  const bool exact_path = s == kUndecided;
-  if (exact_path) {
-    face.ensure_exact();
-    s = detail::exact_sign(d->coef_exact[k]);
-  }
-  count_result(ctx, PredicateKind::tangent_orientation, exact_path, s);
-  d->det_sign = s;  // det K >= 0: 0 (degenerate) or 1
+  d->det_sign = filtered_sign(  // det K >= 0: 0 (degenerate) or 1
+      ctx, PredicateKind::tangent_orientation, finite, [&] { return d->coef[k]; },
+      [&] {
+        face.ensure_exact();
+        return d->coef_exact[k];
+      });
   return face;
 }
 
@@ -563,19 +557,13 @@ int TangentFace::power_sign(int query, FilterContext& ctx) const {
     count_result(ctx, PredicateKind::power, false, 0);
     return 0;
   }
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact && d.usable) {
-    const int s = certain_sign(face_value(d.coef.data(), d.DA.data(), d.k, d.m, d.chart->row(query)));
-    if (s != kUndecided) {
-      count_result(ctx, PredicateKind::power, false, s);
-      return s;
-    }
-  }
-  ensure_exact();
-  const int s =
-      detail::exact_sign(face_value(d.coef_exact.data(), d.DA_exact.data(), d.k, d.m, d.chart->exact_row(query)));
-  count_result(ctx, PredicateKind::power, true, s);
-  return s;
+  return filtered_sign(
+      ctx, PredicateKind::power, d.usable,
+      [&] { return face_value(d.coef.data(), d.DA.data(), d.k, d.m, d.chart->row(query)); },
+      [&] {
+        ensure_exact();
+        return face_value(d.coef_exact.data(), d.DA_exact.data(), d.k, d.m, d.chart->exact_row(query));
+      });
 }
 
 int TangentFace::power_sign(int query, const RationalConstant& delta, FilterContext& ctx) const {
@@ -585,23 +573,19 @@ int TangentFace::power_sign(int query, const RationalConstant& delta, FilterCont
     count_result(ctx, PredicateKind::power_threshold, false, 0);
     return 0;
   }
-  detail::EnsureUpward guard;
-  if (!ctx.force_exact && d.usable) {
-    const IA v = face_value(d.coef.data(), d.DA.data(), d.k, d.m, d.chart->row(query)) -
-                 detail::to_ia(delta.enclosure()) * d.coef[d.k];
-    const int s = certain_sign(v);
-    if (s != kUndecided) {
-      count_result(ctx, PredicateKind::power_threshold, false, s);
-      return s;
-    }
-  }
-  ensure_exact();
-  const EX num = detail::to_ex(delta.value().get_num()), den = detail::to_ex(delta.value().get_den());
-  const EX v = den * face_value(d.coef_exact.data(), d.DA_exact.data(), d.k, d.m, d.chart->exact_row(query)) -
+  return filtered_sign(
+      ctx, PredicateKind::power_threshold, d.usable,
+      [&] {
+        return face_value(d.coef.data(), d.DA.data(), d.k, d.m, d.chart->row(query)) -
+               detail::to_ia(delta.enclosure()) * d.coef[d.k];
+      },
+      [&] {
+        ensure_exact();
+        // delta = num/den with den > 0 (as for cells).
+        const EX num = detail::to_ex(delta.value().get_num()), den = detail::to_ex(delta.value().get_den());
+        return den * face_value(d.coef_exact.data(), d.DA_exact.data(), d.k, d.m, d.chart->exact_row(query)) -
                num * d.coef_exact[d.k];
-  const int s = detail::exact_sign(v);
-  count_result(ctx, PredicateKind::power_threshold, true, s);
-  return s;
+      });
 }
 
 mpq_class TangentFace::power_exact(int query) const {
@@ -634,7 +618,57 @@ void check_all_finite(std::span<const double* const> pts, const double* query, i
   if (query) check_finite(query, N);
 }
 
+// The interval evaluation of the one-shot power tests: a sign, or kUndecided.
+template <int M>
+int interval_power(const TangentSpace::Impl& s, std::span<const double* const> cell, const double* query,
+                   const RationalConstant* delta) {
+  constexpr int L = M + 1;
+  IA buf[(M + 2) * L];
+  const IA* rows[L];
+  const IA* rq = chart_rows_of<M>(s, cell, query, buf, rows);
+  IA coef[L], k0;
+  detail::power_cell<M>(rows, false, coef, k0);
+  const int ds = certain_sign(coef[M]);
+  if (ds == 0 || ds == kUndecided) return ds;
+  IA v = detail::power_value<M>(coef, k0, rq, false);
+  if (delta) v = v - detail::to_ia(delta->enclosure()) * coef[M];
+  const int vs = certain_sign(v);
+  return vs == kUndecided ? kUndecided : ds * vs;
+}
+
+// The exact evaluation of the one-shot power tests.
+template <int M>
+int exact_power(const TangentSpace::Impl& s, std::span<const double* const> cell, const double* query,
+                const RationalConstant* delta, int N) {
+  constexpr int L = M + 1;
+  check_all_finite(cell, query, N);
+  EX buf[(M + 2) * L];
+  const EX* rows[L];
+  const EX* rq = chart_rows_of<M>(s, cell, query, buf, rows);
+  EX coef[L], k0;
+  detail::power_cell<M>(rows, false, coef, k0);
+  const int ds = detail::exact_sign(coef[M]);
+  if (ds == 0) return 0;
+  EX v = detail::power_value<M>(coef, k0, rq, false);
+  if (delta) {
+    const EX num = detail::to_ex(delta->value().get_num()), den = detail::to_ex(delta->value().get_den());
+    v = den * v - num * coef[M];
+  }
+  return ds * detail::exact_sign(v);
+}
+
+// The orientation determinant of m + 1 points from their chart rows, in either number type.
+template <int M, class NT>
+NT one_shot_orientation(const TangentSpace::Impl& s, std::span<const double* const> points) {
+  constexpr int L = M + 1;
+  NT buf[L * L];
+  const NT* rows[L];
+  chart_rows_of<M>(s, points, nullptr, buf, rows);
+  return detail::orientation_det<M>(rows, false);
+}
+
 // Shared body of the two one-shot power tests; delta == nullptr for the plain test.
+// sign(det B) * sign(det M(q) [- delta det B]), and 0 when det B = 0 (see power_cell).
 int one_shot_power(const TangentSpace& space, std::span<const double* const> cell, const double* query,
                    const RationalConstant* delta, FilterContext& ctx) {
   const int m = space.intrinsic_dimension();
@@ -642,58 +676,10 @@ int one_shot_power(const TangentSpace& space, std::span<const double* const> cel
   if (query == nullptr) throw std::invalid_argument("null point pointer");
   const auto& s = space.impl();
   const PredicateKind kind = delta ? PredicateKind::power_threshold : PredicateKind::power;
-  detail::EnsureUpward guard;
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(m, [&](auto Mc) {
     constexpr int M = Mc();
-    constexpr int L = M + 1;
-    if (!ctx.force_exact) {
-      IA buf[(M + 2) * L];
-      const IA* rows[L];
-      for (int i = 0; i < L; ++i) {
-        interval_row<M>(s, cell[i], buf + i * L);
-        rows[i] = buf + i * L;
-      }
-      interval_row<M>(s, query, buf + L * L);
-      IA coef[L], k0;
-      detail::power_cell<M>(rows, false, coef, k0);
-      const int ds = certain_sign(coef[M]);
-      if (ds == 0) {
-        count_result(ctx, kind, false, 0);
-        return 0;
-      }
-      if (ds != kUndecided) {
-        IA v = detail::power_value<M>(coef, k0, buf + L * L, false);
-        if (delta) v = v - detail::to_ia(delta->enclosure()) * coef[M];
-        const int vs = certain_sign(v);
-        if (vs != kUndecided) {
-          count_result(ctx, kind, false, ds * vs);
-          return ds * vs;
-        }
-      }
-    }
-    check_all_finite(cell, query, space.ambient_dimension());
-    EX buf[(M + 2) * L];
-    const EX* rows[L];
-    for (int i = 0; i < L; ++i) {
-      exact_row<M>(s, cell[i], buf + i * L);
-      rows[i] = buf + i * L;
-    }
-    exact_row<M>(s, query, buf + L * L);
-    EX coef[L], k0;
-    detail::power_cell<M>(rows, false, coef, k0);
-    const int ds = detail::exact_sign(coef[M]);
-    if (ds == 0) {
-      count_result(ctx, kind, true, 0);
-      return 0;
-    }
-    EX v = detail::power_value<M>(coef, k0, buf + L * L, false);
-    if (delta) {
-      const EX num = detail::to_ex(delta->value().get_num()), den = detail::to_ex(delta->value().get_den());
-      v = den * v - num * coef[M];
-    }
-    const int r = ds * detail::exact_sign(v);
-    count_result(ctx, kind, true, r);
-    return r;
+    return filtered_sign(ctx, kind, [&] { return interval_power<M>(s, cell, query, delta); },
+                         [&] { return exact_power<M>(s, cell, query, delta, space.ambient_dimension()); });
   });
 }
 
@@ -703,33 +689,14 @@ int tangent_orientation(const TangentSpace& space, std::span<const double* const
   const int m = space.intrinsic_dimension();
   check_points(points, m + 1, "orientation");
   const auto& s = space.impl();
-  detail::EnsureUpward guard;
   return detail::dispatch<1, detail::kMaxIntrinsicDim>(m, [&](auto Mc) {
     constexpr int M = Mc();
-    constexpr int L = M + 1;
-    if (!ctx.force_exact) {
-      IA buf[L * L];
-      const IA* rows[L];
-      for (int i = 0; i < L; ++i) {
-        interval_row<M>(s, points[i], buf + i * L);
-        rows[i] = buf + i * L;
-      }
-      const int r = certain_sign(detail::orientation_det<M>(rows, false));
-      if (r != kUndecided) {
-        count_result(ctx, PredicateKind::tangent_orientation, false, r);
-        return r;
-      }
-    }
-    check_all_finite(points, nullptr, space.ambient_dimension());
-    EX buf[L * L];
-    const EX* rows[L];
-    for (int i = 0; i < L; ++i) {
-      exact_row<M>(s, points[i], buf + i * L);
-      rows[i] = buf + i * L;
-    }
-    const int r = detail::exact_sign(detail::orientation_det<M>(rows, false));
-    count_result(ctx, PredicateKind::tangent_orientation, true, r);
-    return r;
+    return filtered_sign(
+        ctx, PredicateKind::tangent_orientation, [&] { return one_shot_orientation<M, IA>(s, points); },
+        [&] {
+          check_all_finite(points, nullptr, space.ambient_dimension());
+          return one_shot_orientation<M, EX>(s, points);
+        });
   });
 }
 

@@ -11,6 +11,7 @@
 #include "exact/detail/kernels.hpp"
 #include "exact/detail/tangent_impl.hpp"
 #include "exact/interval.hpp"
+#include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::exact {
@@ -36,7 +37,7 @@ EX minor_of(const std::vector<EX>& J, int k, int N, const std::vector<int>& cols
   std::vector<EX> a(static_cast<std::size_t>(k) * k);
   for (int i = 0; i < k; ++i)
     for (int c = 0; c < k; ++c) a[i * k + c] = J[i * N + cols[c]];
-  return detail::dispatch<1, detail::kMaxCodim>(k, [&](auto K) { return detail::determinant<K()>(a.data()); });
+  return detail::dispatch<1, detail::kMaxCodim>(k, [&](auto K) { return determinant<K()>(a.data()); });
 }
 
 // Maximal minors of the k x (k+1) matrix [J_P | J_f]: out[j] = det(columns without j).
@@ -50,36 +51,10 @@ void maximal_minors(const std::vector<EX>& J, int k, int N, const std::vector<in
       a[i * C + R] = J[i * N + f];
     }
     std::vector<EX> table(1u << C);
-    detail::minor_table<R, C>(a.data(), table.data());
+    minor_table<R, C>(a.data(), table.data());
     out.resize(C);
     for (int j = 0; j < C; ++j) out[j] = table[((1u << C) - 1) ^ (1u << j)];
   });
-}
-
-// Exact rational solve of the m x m system G z = r (G symmetric positive definite).
-std::vector<mpq_class> solve_rational(std::vector<mpq_class> G, std::vector<mpq_class> r, int m) {
-  for (int c = 0; c < m; ++c) {
-    int piv = c;
-    while (piv < m && G[piv * m + c] == 0) ++piv;
-    if (piv == m) throw std::domain_error("singular Gram matrix (internal error: U must have full rank)");
-    if (piv != c) {
-      for (int j = 0; j < m; ++j) std::swap(G[c * m + j], G[piv * m + j]);
-      std::swap(r[c], r[piv]);
-    }
-    for (int i = c + 1; i < m; ++i) {
-      if (G[i * m + c] == 0) continue;
-      mpq_class f = G[i * m + c] / G[c * m + c];
-      for (int j = c; j < m; ++j) G[i * m + j] -= f * G[c * m + j];
-      r[i] -= f * r[c];
-    }
-  }
-  std::vector<mpq_class> z(m);
-  for (int i = m - 1; i >= 0; --i) {
-    mpq_class acc = r[i];
-    for (int j = i + 1; j < m; ++j) acc -= G[i * m + j] * z[j];
-    z[i] = acc / G[i * m + i];
-  }
-  return z;
 }
 
 }  // namespace
@@ -328,24 +303,7 @@ TangentSpace::TangentSpace(const ImplicitSystem& system, std::span<const double>
         G[a * m + b] = g;
       }
     impl->adj_gram_exact.assign(static_cast<std::size_t>(m) * m, EX(0));
-    if (m == 1) {
-      impl->adj_gram_exact[0] = EX(1);
-    } else {
-      std::vector<EX> minor(static_cast<std::size_t>(m - 1) * (m - 1));
-      for (int i = 0; i < m; ++i)
-        for (int j = 0; j < m; ++j) {
-          for (int r = 0, rr = 0; r < m; ++r) {
-            if (r == i) continue;
-            for (int c = 0, cc = 0; c < m; ++c) {
-              if (c == j) continue;
-              minor[rr * (m - 1) + cc++] = G[r * m + c];
-            }
-            ++rr;
-          }
-          EX d = detail::dispatch<1, detail::kMaxCodim>(m - 1, [&](auto K) { return detail::determinant<K()>(minor.data()); });
-          impl->adj_gram_exact[j * m + i] = ((i + j) % 2 == 0) ? d : EX(-d);
-        }
-    }
+    adjugate(G.data(), m, impl->adj_gram_exact.data());
     for (const auto& a : impl->adj_gram_exact) impl->adj_gram_interval.push_back(detail::enclose_ex(a));
   }
   impl_ = std::move(impl);
@@ -373,11 +331,13 @@ std::vector<mpq_class> TangentSpace::project_exact(std::span<const double> x) co
   for (int i = 0; i < N; ++i) d[i] = to_rational(x[i]) - to_rational(impl_->p[i]);
   for (int a = 0; a < m; ++a)
     for (int i = 0; i < N; ++i) r[a] += impl_->U_rational[i * m + a] * d[i];
-  auto z = solve_rational(impl_->gram, r, m);
+  // G z = r, G = U^T U symmetric positive definite.
+  const auto z = solve(impl_->gram, r, m);
+  if (!z) throw std::domain_error("singular Gram matrix (internal error: U must have full rank)");
   std::vector<mpq_class> out(N);
   for (int i = 0; i < N; ++i) {
     out[i] = to_rational(impl_->p[i]);
-    for (int a = 0; a < m; ++a) out[i] += impl_->U_rational[i * m + a] * z[a];
+    for (int a = 0; a < m; ++a) out[i] += impl_->U_rational[i * m + a] * (*z)[a];
   }
   return out;
 }

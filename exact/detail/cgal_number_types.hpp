@@ -8,16 +8,16 @@
 #pragma once
 
 #include <CGAL/FPU.h>
-#include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <gmpxx.h>
 
 #include "exact/filter_stats.hpp"
 #include "exact/interval.hpp"
+#include "exact/interval_arithmetic.hpp"
 
 namespace delcert::exact::detail {
 
-using IA = CGAL::Interval_nt_advanced;
+using IA = IntervalNumber;  // CGAL::Interval_nt_advanced (interval_arithmetic.hpp)
 using EX = CGAL::Mpzf;
 
 // Sign of an interval's contents: -1, 0 or +1 when certain, kUndecided when it contains 0 and
@@ -32,8 +32,8 @@ inline int certain_sign(const IA& x) {
 
 inline int exact_sign(const EX& x) { return static_cast<int>(x.sign()); }
 
-inline IA to_ia(const Interval& x) { return IA(x.lo, x.hi); }
-inline Interval from_ia(const IA& x) { return {x.inf(), x.sup()}; }
+inline IA to_ia(const Interval& x) { return to_interval_number(x); }
+inline Interval from_ia(const IA& x) { return to_interval(x); }
 
 // Exact conversion of an integer to Mpzf. Do NOT use Mpzf's own mpz constructor: in CGAL 5.5
 // Mpzf(mpz_class) / Mpzf(Gmpz) drops the sign (init_from_mpz_t copies |z|) and mishandles 0

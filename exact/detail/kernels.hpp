@@ -9,11 +9,12 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
+
+#include "exact/linear_algebra.hpp"  // minor_table, determinant
 
 namespace delcert::exact::detail {
 
@@ -33,102 +34,6 @@ decltype(auto) dispatch(int n, F&& f) {
     if (n == Lo) return f(std::integral_constant<int, Lo>{});
     return dispatch<Lo + 1, Hi>(n, static_cast<F&&>(f));
   }
-}
-
-// Minors by Laplace expansion memoised over column subsets.
-// a is Rows x Cols, row-major. On return, for every column set `mask` with popcount(mask) <= Rows,
-// table[mask] is the determinant of the square submatrix formed by the LAST popcount(mask) rows
-// of a and the columns in mask (increasing order); table[0] = 1. table has 2^Cols entries.
-// Each entry expands along the top row of its submatrix: det = sum_k (-1)^k a[top][c_k] *
-// minor(mask \ c_k), where k is the position of c_k within mask. Ring operations only.
-// The non-empty column sets of at most Rows columns out of Cols, ordered by size (so every
-// set comes after its subsets), with their sizes: computed at compile time.
-template <int Rows, int Cols>
-struct MinorMasks {
-  static constexpr int count = [] {
-    int n = 0;
-    for (unsigned mask = 1; mask < (1u << Cols); ++mask) n += std::popcount(mask) <= Rows;
-    return n;
-  }();
-  struct Entry {
-    unsigned mask;
-    int size;
-  };
-  static constexpr std::array<Entry, count> entries = [] {
-    std::array<Entry, count> out{};
-    int n = 0;
-    for (int r = 1; r <= Rows; ++r)
-      for (unsigned mask = 1; mask < (1u << Cols); ++mask)
-        if (std::popcount(mask) == r) out[n++] = {mask, r};
-    return out;
-  }();
-};
-
-// One entry of the minor table (see minor_table), with the column loop unrolled at compile time.
-template <int Rows, int Cols, unsigned Mask, class NT>
-inline void minor_entry(const NT* a, NT* table) {
-  constexpr int r = std::popcount(Mask);
-  const NT* row = a + (Rows - r) * Cols;
-  if constexpr (r == 1) {
-    table[Mask] = row[std::countr_zero(Mask)];
-  } else {
-    NT acc(0);
-    [&]<int... J>(std::integer_sequence<int, J...>) {
-      int pos = 0;
-      (
-          [&] {
-            if constexpr (((Mask >> J) & 1u) != 0) {
-              constexpr unsigned sub = Mask ^ (1u << J);
-              if (pos == 0) acc = row[J] * table[sub];
-              else if (pos % 2 == 1) acc = acc - row[J] * table[sub];
-              else acc = acc + row[J] * table[sub];
-              ++pos;
-            }
-          }(),
-          ...);
-    }(std::make_integer_sequence<int, Cols>{});
-    table[Mask] = acc;
-  }
-}
-
-template <int Rows, int Cols, class NT>
-void minor_table(const NT* a, NT* table) {
-  static_assert(1 <= Rows && Rows <= Cols && Cols <= 12);
-  table[0] = NT(1);
-  if constexpr (Cols <= 5) {
-    // Small tables (the hot tangential predicates): straight-line code.
-    constexpr auto& entries = MinorMasks<Rows, Cols>::entries;
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (minor_entry<Rows, Cols, entries[I].mask>(a, table), ...);
-    }(std::make_index_sequence<MinorMasks<Rows, Cols>::count>{});
-  } else {
-    for (const auto& [mask, r] : MinorMasks<Rows, Cols>::entries) {
-      const NT* row = a + (Rows - r) * Cols;
-      if (r == 1) {
-        table[mask] = row[std::countr_zero(mask)];
-        continue;
-      }
-      int pos = 0;
-      NT acc(0);
-      for (int j = 0; j < Cols; ++j) {
-        if (!((mask >> j) & 1u)) continue;
-        const unsigned sub = mask ^ (1u << j);
-        if (pos == 0) acc = row[j] * table[sub];
-        else if (pos % 2 == 1) acc = acc - row[j] * table[sub];
-        else acc = acc + row[j] * table[sub];
-        ++pos;
-      }
-      table[mask] = acc;
-    }
-  }
-}
-
-// Determinant of an N x N row-major matrix (N >= 1), division-free.
-template <int N, class NT>
-NT determinant(const NT* a) {
-  NT table[1u << N];
-  minor_table<N, N>(a, table);
-  return table[(1u << N) - 1];
 }
 
 // ---------------------------------------------------------------------------------------------
