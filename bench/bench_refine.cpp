@@ -120,25 +120,26 @@ json run_delcert(const Manifold& manifold, const io::PointSet& ps, int threads, 
   refine::RefineResult r = refine::refine(manifold, ps, p);
   const double total = seconds_since(t0);
   json j;
+  const refine::ConstantsAsDoubles used = refine::as_doubles(r.parameters.constants);
   j["parameters"] = {{"mode", "practical"},
-                     {"eps", r.eps_text.empty() ? io::format_double(r.eps) : r.eps_text},
-                     {"gamma0", r.parameters.gamma0},
-                     {"alpha", r.parameters.alpha},
-                     {"beta", r.parameters.beta},
-                     {"delta0", r.parameters.delta0}};
+                     {"eps", r.parameters.constants.eps.value().text},
+                     {"gamma0", used.gamma0},
+                     {"alpha", used.alpha},
+                     {"beta", used.beta},
+                     {"delta0", used.delta0}};
   j["initial_inconsistent_stars"] = r.initial_inconsistent_stars;
   j["initial_inconsistent_simplices"] = r.initial_inconsistent_simplices;
   j["converged"] = r.converged;
-  j["stop_reason"] = r.stop_reason;
+  j["stop_reason"] = refine::to_string(r.stop_reason);
   j["rounds"] = r.rounds;
   j["points_added"] = r.points.size() - r.input_size;
   json rules = json::object();
-  for (int i = 0; i < refine::kNumRules; ++i)
-    rules[refine::to_string(static_cast<refine::Rule>(i))] = {{"inserted", r.rules[i].inserted},
-                                                               {"seconds", r.rules[i].seconds},
-                                                               {"candidates", r.rules[i].candidates},
-                                                               {"rejected_hit", r.rules[i].rejected_hit},
-                                                               {"fallbacks", r.rules[i].fallbacks}};
+  for (refine::Rule rule : refine::kRules)
+    rules[refine::to_string(rule)] = {{"inserted", r.rules[rule].inserted},
+                                      {"seconds", r.rules[rule].seconds},
+                                      {"candidates", r.rules[rule].candidates},
+                                      {"rejected_hit", r.rules[rule].rejected_hit},
+                                      {"fallbacks", r.rules[rule].fallbacks}};
   j["rules"] = rules;
   j["time_seconds"] = {{"stars", r.star_seconds},
                        {"configurations", r.configuration_seconds},
@@ -158,9 +159,8 @@ json run_delcert(const Manifold& manifold, const io::PointSet& ps, int threads, 
     ctx.manifold = manifold.spec().name;
     ctx.manifold_source = manifold.spec().source;
     ctx.input = "bench_refine " + name;
-    ctx.text = {r.eps_text, "0.1", "0.3", "1.1", refine::default_delta0("0.1", manifold.intrinsic_dimension())};
     const std::string dir = out_dir + "/" + name;
-    refine::write_refine_output(dir, r, p, ctx);
+    refine::write_refine_output(dir, r, ctx);
     {
       io::PointSet input;
       input.dimension = ps.dimension;

@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-#include "certify/claims.hpp"
+#include "io/claims.hpp"
 #include "certify/grid.hpp"
 #include "certify/parallel.hpp"
 #include "certify/sanity.hpp"
@@ -165,11 +165,11 @@ Certificate run_certify(const CertifyOptions& o) {
     }
     given = cf.complex;
   }
-  Claims claims;
+  io::Claims claims;
   std::string claims_text;
   if (!o.claims.empty()) {
     claims_text = io::read_file(o.claims);
-    claims = parse_claims(claims_text, o.claims);
+    claims = io::parse_claims(claims_text, o.claims);
   }
   C.inputs["manifold"] = {{"source", o.manifold}, {"name", spec.name}, {"sha256", Sha256::hex(spec_text)},
                           {"intrinsic_dimension", m}, {"ambient_dimension", N}};

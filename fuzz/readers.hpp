@@ -22,7 +22,7 @@
 #include <string_view>
 #include <typeinfo>
 
-#include "certify/claims.hpp"
+#include "io/claims.hpp"
 #include "exact/polynomial.hpp"
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
@@ -110,7 +110,7 @@ inline bool spec(const std::string& text) {
 
 inline bool claims(const std::string& text) {
   try {
-    certify::parse_claims(text, "fuzz-input.json");
+    io::parse_claims(text, "fuzz-input.json");
   } catch (const io::InputError&) {
     return false;
   }

@@ -4,7 +4,7 @@
 # a broken round trip, a sanitizer report, a timeout (-timeout=5 s per input) or an out-of-memory
 # (-rss_limit_mb=2048). Targets and what counts as a failure: fuzz/readers.hpp.
 #
-# The build goes to build-fuzz/ (cmake -DDELCERT_FUZZ=ON: exact/, io/ and certify/claims only).
+# The build goes to build-fuzz/ (cmake -DDELCERT_FUZZ=ON: exact/ and io/ only).
 # Each run starts from a fresh scratch corpus, build-fuzz/corpus/TARGET/, seeded from fixtures/;
 # crashing inputs are written to build-fuzz/artifacts/TARGET/. Keep every crash as a regression:
 # copy it to fuzz/regressions/TARGET/ (replayed by tests/fuzz/fuzz_regression_test.cpp).

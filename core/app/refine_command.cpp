@@ -32,7 +32,6 @@
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
 #include "core/sampling/sampling.hpp"
-#include "exact/polynomial.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/points.hpp"
@@ -51,14 +50,39 @@ struct RefineArgs {
 };
 
 // An exact rational option ("0.1", "1/10", "1e-1"); `name` is the option, for the message.
-double rational_option(const std::string& name, const std::string& text, mpq_class* exact = nullptr) {
+refine::ExactParameter rational_option(const std::string& name, const std::string& text) {
   try {
-    mpq_class q = parse_rational(text);
-    if (exact) *exact = q;
-    return q.get_d();
+    return refine::ExactParameter::parse(text);
   } catch (const std::invalid_argument&) {
     throw io::InputError(name, 0, "'" + text + "' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10");
   }
+}
+
+// The constants as typed, parsed exactly (δ0 defaulted for intrinsic dimension m) and validated.
+// When several are wrong, the first reported is the one `delcert refine` has always reported: Γ0
+// is read first when it gives the default δ0, ε is checked as soon as it is read, the ranges of
+// the others after all of them are read.
+refine::Constants constants_option(const RefineArgs& a, int m) {
+  auto checked = [](auto&& validate) {
+    try {
+      validate();
+    } catch (const refine::ParameterError& e) {
+      throw io::InputError(e.option(), 0, e.reason());
+    }
+  };
+  refine::Constants c;
+  if (a.delta0.empty()) c.gamma0 = rational_option("--gamma0", a.gamma0);
+  if (!a.eps.empty()) {
+    c.eps = rational_option("--eps", a.eps);
+    checked([&] { refine::validate_eps(*c.eps); });
+  }
+  c.gamma0 = rational_option("--gamma0", a.gamma0);
+  c.alpha = rational_option("--alpha", a.alpha);
+  c.beta = rational_option("--beta", a.beta);
+  if (!a.delta0.empty()) c.delta0 = rational_option("--delta0", a.delta0);
+  refine::resolve_delta0(c, m);
+  checked([&] { refine::validate(c); });
+  return c;
 }
 
 int run_refine(const RefineArgs& a) {
@@ -82,30 +106,7 @@ int run_refine(const RefineArgs& a) {
 
   refine::RefineParameters params;
   params.mode = a.mode == "paper" ? refine::RefineMode::paper : refine::RefineMode::practical;
-  refine::ParameterText text;
-  text.eps = a.eps;
-  text.gamma0 = a.gamma0;
-  text.alpha = a.alpha;
-  text.beta = a.beta;
-  text.delta0 = a.delta0;
-  if (text.delta0.empty()) {
-    rational_option("--gamma0", a.gamma0);
-    text.delta0 = refine::default_delta0(a.gamma0, m);
-  }
-  if (!a.eps.empty()) {
-    params.eps = rational_option("--eps", a.eps);
-    if (!(params.eps > 0)) throw io::InputError("--eps", 0, "must be positive");
-  }
-  params.gamma0 = rational_option("--gamma0", a.gamma0);
-  params.alpha = rational_option("--alpha", a.alpha);
-  params.beta = rational_option("--beta", a.beta);
-  params.delta0 = rational_option("--delta0", text.delta0);
-  params.gamma0_text = text.gamma0;
-  params.delta0_text = text.delta0;
-  if (!(params.gamma0 > 0 && params.gamma0 <= 1)) throw io::InputError("--gamma0", 0, "must lie in (0, 1]");
-  if (!(params.alpha > 0 && params.alpha < 1)) throw io::InputError("--alpha", 0, "must lie in (0, 1); the paper takes alpha < 1/2");
-  if (!(params.beta > 0)) throw io::InputError("--beta", 0, "must be positive; the paper takes beta > 1");
-  if (!(params.delta0 >= 0 && params.delta0 < 1)) throw io::InputError("--delta0", 0, "must lie in [0, 1); the paper takes delta0 < 1/4");
+  params.constants = constants_option(a, m);
   params.seed = a.seed;
   params.threads = a.threads;
   params.max_inserted = a.max_inserted;
@@ -121,19 +122,21 @@ int run_refine(const RefineArgs& a) {
     input_text = a.points;
   } else {
     EpsNetOptions eo;
-    eo.eps = params.eps;
+    eo.eps = refine::as_doubles(params.constants).eps;
     eo.seed = a.seed;
     auto net = eps_net(manifold, eo);
     check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
-    input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + a.eps + " --seed " + std::to_string(a.seed) + ")";
+    input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text + " --seed " + std::to_string(a.seed) + ")";
   }
 
   const bool tty = isatty(STDERR_FILENO);
   if (tty)
     params.progress = [](const refine::RefineProgress& p) {
+      using refine::Rule;
       std::fprintf(stderr, "\rround %zu: %zu points (+%zu); pending big %zu, bad %zu, bad cosph %zu, unprotected %zu, inconsistent %zu   ",
-                   p.round, p.points, p.inserted, p.pending[0], p.pending[1], p.pending[2], p.pending[3], p.pending[4]);
+                   p.round, p.points, p.inserted, p.pending[Rule::big], p.pending[Rule::bad_star], p.pending[Rule::bad_cosph],
+                   p.pending[Rule::unprotected], p.pending[Rule::inconsistent]);
       std::fflush(stderr);
     };
   refine::RefineResult result;
@@ -150,26 +153,26 @@ int run_refine(const RefineArgs& a) {
   ctx.manifold = manifold.spec().name;
   ctx.manifold_source = manifold.spec().source;
   ctx.input = input_text;
-  ctx.text = text;
-  refine::write_refine_output(a.out, result, params, ctx);
+  refine::write_refine_output(a.out, result, ctx);
 
   const auto& f = result.final;
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), m, N);
   std::printf("mode               %s\n", refine::to_string(params.mode));
-  std::printf("eps                %s%s\n", a.eps.empty() ? result.eps_text.c_str() : a.eps.c_str(),
+  const refine::Constants& used = result.parameters.constants;
+  std::printf("eps                %s%s\n", used.eps.value().text.c_str(),
               result.eps_derived ? " (derived from the input's largest R_p)" : "");
   std::printf("points             %zu input + %zu inserted = %zu\n", result.input_size, result.points.size() - result.input_size,
               result.points.size());
-  for (int i = 0; i < refine::kNumRules; ++i)
-    if (result.rules[i].inserted || result.rules[i].failures)
-      std::printf("  %-16s %zu inserted (%zu failures, %.3f s)\n", refine::to_string(static_cast<refine::Rule>(i)),
-                  result.rules[i].inserted, result.rules[i].failures, result.rules[i].seconds);
+  for (refine::Rule rule : refine::kRules)
+    if (const auto& s = result.rules[rule]; s.inserted || s.failures)
+      std::printf("  %-16s %zu inserted (%zu failures, %.3f s)\n", refine::to_string(rule), s.inserted, s.failures, s.seconds);
   std::printf("rounds             %zu\n", result.rounds);
-  std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", result.stop_reason.c_str());
+  std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", refine::to_string(result.stop_reason));
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
-  std::printf("min distance       %.4g (eps/9 = %.4g; %zu sparsity violations)\n", f.min_distance, result.eps / 9,
+  std::printf("min distance       %.4g (eps/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
+              refine::mu0_times(refine::as_doubles(used).eps),
               result.sparsity_violations.size());
   std::printf("time               %.3f s -> %s\n", result.total_seconds, a.out.c_str());
   return result.converged ? kExitOk : kExitNotConverged;

@@ -6,15 +6,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "exact/polynomial.hpp"
-
 namespace delcert::refine {
 
-const char* to_string(HypothesisStatus s) {
+using exact::Tri;
+
+const char* status_name(Tri s) {
   switch (s) {
-    case HypothesisStatus::holds: return "holds";
-    case HypothesisStatus::fails: return "fails";
-    case HypothesisStatus::not_evaluable: return "not_evaluable";
+    case Tri::yes: return "holds";
+    case Tri::no: return "fails";
+    case Tri::unknown: return "not_evaluable";
   }
   return "?";
 }
@@ -31,7 +31,7 @@ HypothesisCheck decided(std::string name, std::string statement, double lhs, dou
   HypothesisCheck c;
   c.name = std::move(name);
   c.statement = std::move(statement);
-  c.status = holds ? HypothesisStatus::holds : HypothesisStatus::fails;
+  c.status = exact::tri(holds);
   c.lhs = lhs;
   c.rhs = rhs;
   c.detail = what + ": " + num(lhs) + (holds ? " satisfies" : " violates") + " the bound " + num(rhs);
@@ -45,11 +45,12 @@ HypothesesReport evaluate_hypotheses(const HypothesesInput& in) {
   const int m = in.m;
   const double eps0 = 1.0 / (16.0 * 17.0 * 17.0);
   r.eps0_tilde = eps0;
-  const double a = in.alpha, b = in.beta, g = in.gamma0, d2 = in.delta0 * in.delta0;
+  const ConstantsAsDoubles dbl = as_doubles(in.constants);
+  const double a = dbl.alpha, b = dbl.beta, g = dbl.gamma0, d2 = dbl.delta0 * dbl.delta0;
   const double B = 4 + 2 * std::pow(1 + 1152 * b * b, 2);
   const double gm1 = std::pow(g, m + 1);
   const bool has_reach = in.reach.has_value() && in.reach.value() > 0;
-  const double eps_tilde = has_reach ? in.eps / in.reach.value() : 0.0;
+  const double eps_tilde = has_reach ? dbl.eps / in.reach.value() : 0.0;
 
   r.checks.push_back(decided("H0", "alpha < 1/2", a, 0.5, a < 0.5, "alpha"));
   {
@@ -65,27 +66,23 @@ HypothesesReport evaluate_hypotheses(const HypothesesInput& in) {
     c.lhs = g;
     c.rhs = rhs;
     if (!(g < rhs)) {
-      c.status = HypothesisStatus::fails;
+      c.status = Tri::no;
       c.detail = "Gamma0 = " + num(g) + " violates the specified part Gamma0 < 1/(B+1) = " + num(rhs);
     } else {
-      c.status = HypothesisStatus::not_evaluable;
+      c.status = Tri::unknown;
       c.detail = "the specified part Gamma0 < 1/(B+1) = " + num(rhs) +
                  " holds; V_m alpha^m / (E^(m+1) beta^m D) needs E (from xi and A) and D, which the paper leaves unspecified";
     }
     r.checks.push_back(c);
   }
   {
-    bool h3 = d2 <= gm1;
-    std::string how = "delta0^2";
-    if (!in.gamma0_text.empty() && !in.delta0_text.empty()) {
-      // Exact: both are rationals, and so are both sides.
-      const mpq_class g = parse_rational(in.gamma0_text), d = parse_rational(in.delta0_text);
-      mpq_class rhs(1);
-      for (int i = 0; i <= m; ++i) rhs *= g;
-      h3 = d * d <= rhs;
-      how = "delta0^2 (decided exactly)";
-    }
-    r.checks.push_back(decided("H3", "delta0^2 <= Gamma0^(m+1)", d2, gm1, h3, how));
+    // Exact: both are rationals, and so are both sides.
+    const mpq_class& gq = in.constants.gamma0.value;
+    const mpq_class& dq = in.constants.delta0.value().value;
+    mpq_class rhs(1);
+    for (int i = 0; i <= m; ++i) rhs *= gq;
+    const bool h3 = dq * dq <= rhs;
+    r.checks.push_back(decided("H3", "delta0^2 <= Gamma0^(m+1)", d2, gm1, h3, "delta0^2 (decided exactly)"));
   }
   {
     HypothesisCheck c;
@@ -94,15 +91,15 @@ HypothesesReport evaluate_hypotheses(const HypothesesInput& in) {
     const double rhs = gm1 / (8 * b);
     c.rhs = rhs;
     if (!has_reach) {
-      c.status = HypothesisStatus::not_evaluable;
+      c.status = Tri::unknown;
       c.detail = "the manifold spec gives no reach, so eps~ = eps / rch is unknown; xi is unspecified";
     } else {
       c.lhs = eps_tilde;
       if (!(eps_tilde <= rhs)) {
-        c.status = HypothesisStatus::fails;
+        c.status = Tri::no;
         c.detail = "eps~ = " + num(eps_tilde) + " violates the specified part Gamma0^(m+1) / (8 beta) = " + num(rhs);
       } else {
-        c.status = HypothesisStatus::not_evaluable;
+        c.status = Tri::unknown;
         c.detail = "eps~ = " + num(eps_tilde) + " satisfies the specified part " + num(rhs) + "; xi is unspecified";
       }
     }
@@ -114,7 +111,7 @@ HypothesesReport evaluate_hypotheses(const HypothesesInput& in) {
       HypothesisCheck c;
       c.name = "H5";
       c.statement = "eps~ <= delta0^2 Gamma0^(2m) / (1.1 10^9)";
-      c.status = HypothesisStatus::not_evaluable;
+      c.status = Tri::unknown;
       c.rhs = rhs;
       c.detail = "the manifold spec gives no reach, so eps~ = eps / rch is unknown";
       r.checks.push_back(c);
@@ -142,8 +139,8 @@ HypothesesReport evaluate_hypotheses(const HypothesesInput& in) {
                    "D: depends on m and beta (lemma 'volume of forbidden region'); enters H2"};
   r.all_hold = true;
   for (const auto& c : r.checks) {
-    if (c.status == HypothesisStatus::fails) r.any_fails = true;
-    if (c.status != HypothesisStatus::holds) r.all_hold = false;
+    if (c.status == Tri::no) r.any_fails = true;
+    if (c.status != Tri::yes) r.all_hold = false;
   }
   return r;
 }

@@ -21,34 +21,36 @@
 #include <string>
 #include <vector>
 
+#include "core/refine/parameters.hpp"
+#include "exact/tri.hpp"
+
 namespace delcert::refine {
 
-enum class HypothesisStatus { holds, fails, not_evaluable };
-const char* to_string(HypothesisStatus s);
+// A hypothesis holds (yes), fails (no) or is not evaluable (unknown).
+// The words report.json writes: "holds", "fails", "not_evaluable".
+const char* status_name(exact::Tri status);
 
 struct HypothesisCheck {
   std::string name;       // "H0" .. "H5"
   std::string statement;  // the inequality as in the paper
-  HypothesisStatus status = HypothesisStatus::not_evaluable;
+  exact::Tri status = exact::Tri::unknown;
   std::string detail;     // the numbers, and what is missing
   std::optional<double> lhs, rhs;  // the evaluated sides of the decidable part, when there is one
 };
 
 struct HypothesesInput {
   int m = 2;
-  double eps = 0;
-  double gamma0 = 0, alpha = 0, beta = 0, delta0 = 0;
+  // ε and δ0 set. H3 (δ0^2 <= Γ0^(m+1)), which the default δ0 meets with equality, is decided in
+  // exact arithmetic; the rest on as_doubles(constants).
+  Constants constants;
   std::optional<double> reach;  // rch(M); without it the ε-hypotheses cannot be evaluated
   bool reach_is_lower_bound = false;
-  // Exact rational text of Γ0 and δ0 when known: H3 (δ0^2 <= Γ0^(m+1)), which the default δ0
-  // meets with equality, is then decided in exact arithmetic rather than on rounded doubles.
-  std::string gamma0_text, delta0_text;
 };
 
 struct HypothesesReport {
   std::vector<HypothesisCheck> checks;  // H0..H5 in order
   double eps0_tilde = 0;                // ε̃0
-  double mu0 = 1.0 / 9;                 // μ0 (the sparsity constant of the termination theorem)
+  double mu0 = 1.0 / kMu0Reciprocal;    // μ0 (the sparsity constant of the termination theorem)
   bool sparsity_lemma_holds = false;    // (1 - δ0^2)(1 - α - 4.5 ε̃0) / 4 > 1/9 (eq. sparsity.bound)
   double sparsity_lemma_lhs = 0;
   // Largest ε allowed by the decidable parts of H4 and H5 (and ε̃ < ε̃0), given the reach: an

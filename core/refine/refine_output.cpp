@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "exact/polynomial.hpp"
 #include "io/atomic_file.hpp"
+#include "io/claims.hpp"
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
 #include "io/points.hpp"
@@ -40,10 +40,6 @@ mpq_class decimal_below(double x, int digits) {
   return q;
 }
 
-mpq_class eps_rational(const RefineResult& r, const ParameterText& t) {
-  return parse_rational(t.eps.empty() ? r.eps_text : t.eps);
-}
-
 const char* kPracticalRules[] = {
     "unprotected: a Gamma0-good (m+1)-simplex q*s in cosph(p) leaves s unprotected; the paper shows none exist under "
     "H0-H5, at realistic eps they do: insert Pick_valid in the picking region of s at p (the point lands in s's "
@@ -63,44 +59,43 @@ const char* kPracticalRules[] = {
 
 }  // namespace
 
-ClaimsOutcome make_claims(const RefineResult& r, const RefineParameters& p, const ParameterText& t) {
+ClaimsOutcome make_claims(const RefineResult& r) {
   ClaimsOutcome out;
   const FinalMeasures& f = r.final;
-  json j;
-  j["format"] = "delcert-claims v1";
-  const mpq_class eps = eps_rational(r, t);
+  const Constants& k = r.parameters.constants;
+  io::Claims claims;
+  const mpq_class& eps = k.eps.value().value;
   if (f.all_small)
-    j["eps"] = rational_to_string(eps);
+    claims.eps = eps;
   else
     out.omitted.emplace_back("eps", "some star simplex has R_p >= eps, or a star is not closed");
-  mpq_class mu0eps = eps / 9;
-  mu0eps.canonicalize();
+  const mpq_class mu0eps = mu0_times(eps);
   if (f.min_distance > mu0eps.get_d() * (1 + 1e-9)) {
-    j["sparsity"] = rational_to_string(mu0eps);
+    claims.sparsity = mu0eps;
   } else if (f.min_distance > 0) {
-    j["sparsity"] = rational_to_string(decimal_below(f.min_distance, 3));
+    claims.sparsity = decimal_below(f.min_distance, 3);
     out.omitted.emplace_back("sparsity eps/9", "the smallest distance is below eps/9 (the input is denser, or a "
                                                "sparsity violation was reported): the claim is a bound just below it");
   }
   if (f.all_good)
-    j["gamma0"] = rational_to_string(parse_rational(t.gamma0));
+    claims.gamma0 = k.gamma0.value;
   else
     out.omitted.emplace_back("gamma0", "some star simplex is Gamma0-bad");
-  mpq_class d0 = parse_rational(t.delta0);
+  const mpq_class& d0 = k.delta0.value().value;
   mpq_class dcheck2 = d0 * d0 * mu0eps * mu0eps;
   dcheck2.canonicalize();
   if (f.protected_claim)
-    j["power_protection"] = rational_to_string(dcheck2);
+    claims.power_protection = dcheck2;
   else
     out.omitted.emplace_back("power_protection", "some star simplex is not delta-check^2-power-protected");
-  (void)p;
-  out.json = j.dump(2) + "\n";
+  out.json = io::format_claims(claims);
   return out;
 }
 
-std::string make_report(const RefineResult& r, const RefineParameters& /*given*/, const OutputContext& c,
-                        const ClaimsOutcome& claims) {
+std::string make_report(const RefineResult& r, const OutputContext& c, const ClaimsOutcome& claims) {
   const RefineParameters& p = r.parameters;  // as used
+  const Constants& k = p.constants;
+  const ConstantsAsDoubles dbl = as_doubles(k);
   const FinalMeasures& f = r.final;
   json j;
   j["format"] = "delcert-refine-report v1";
@@ -108,15 +103,14 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
   j["manifold_source"] = c.manifold_source;
   j["mode"] = to_string(p.mode);
   j["input"] = {{"source", c.input}, {"points", r.input_size}, {"min_distance", number(f.input_min_distance)}};
-  const std::string eps_text = c.text.eps.empty() ? r.eps_text : c.text.eps;
-  j["parameters"] = {{"eps", eps_text},
+  j["parameters"] = {{"eps", k.eps.value().text},
                      {"eps_source", r.eps_derived ? "derived: two significant digits above the input's largest R_p"
                                                   : "given"},
-                     {"gamma0", c.text.gamma0},
-                     {"alpha", c.text.alpha},
-                     {"beta", c.text.beta},
-                     {"delta0", c.text.delta0},
-                     {"mu0", "1/9"},
+                     {"gamma0", k.gamma0.text},
+                     {"alpha", k.alpha.text},
+                     {"beta", k.beta.text},
+                     {"delta0", k.delta0.value().text},
+                     {"mu0", "1/" + std::to_string(kMu0Reciprocal)},
                      {"seed", p.seed},
                      {"max_inserted", p.max_inserted},
                      {"max_rounds", p.max_rounds},
@@ -127,7 +121,7 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
     for (const auto& ch : h.checks)
       hs.push_back({{"name", ch.name},
                     {"statement", ch.statement},
-                    {"status", to_string(ch.status)},
+                    {"status", status_name(ch.status)},
                     {"lhs", ch.lhs ? number(*ch.lhs) : json(nullptr)},
                     {"rhs", ch.rhs ? number(*ch.rhs) : json(nullptr)},
                     {"detail", ch.detail}});
@@ -143,17 +137,17 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
                        {"all_hold", h.all_hold}};
   }
   j["converged"] = r.converged;
-  j["stop_reason"] = r.stop_reason;
+  j["stop_reason"] = to_string(r.stop_reason);
   if (p.time_limit > 0) j["time_limit_seconds"] = p.time_limit;
   j["rounds"] = r.rounds;
   {
     std::size_t applied = 0;
-    for (const auto& s : r.rules) applied += s.applied;
+    for (const auto& s : r.rules.values) applied += s.applied;
     j["iterations"] = applied;  // rule applications (Algorithm 1 iterations), one inserted point each
   }
   {
     json ic = json::object();
-    for (int i = 0; i < kNumRules; ++i) ic[to_string(static_cast<Rule>(i))] = r.initial_configurations[i];
+    for (Rule rule : kRules) ic[to_string(rule)] = r.initial_configurations[rule];
     j["initial"] = {{"inconsistent_simplices", r.initial_inconsistent_simplices},
                     {"inconsistent_stars", r.initial_inconsistent_stars},
                     {"configurations", ic}};
@@ -161,10 +155,9 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
   j["points"] = {{"input", r.input_size}, {"inserted", r.points.size() - r.input_size}, {"total", r.points.size()}};
   json rules = json::object();
   const bool paper = p.mode == RefineMode::paper;
-  for (int i = 0; i < kNumRules; ++i) {
-    const Rule rule = static_cast<Rule>(i);
+  for (Rule rule : kRules) {
     if (paper && (rule == Rule::unprotected || rule == Rule::inconsistent)) continue;
-    const RuleStats& s = r.rules[i];
+    const RuleStats& s = r.rules[rule];
     rules[to_string(rule)] = {{"inserted", s.inserted},
                               {"applied", s.applied},
                               {"skipped_stale", s.skipped_stale},
@@ -184,8 +177,8 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
   }
   j["time_seconds"] = {{"stars", r.star_seconds}, {"configurations", r.configuration_seconds}, {"total", r.total_seconds}};
   json remaining = json::object();
-  for (int i = 0; i < kNumRules; ++i) remaining[to_string(static_cast<Rule>(i))] = f.remaining[i];
-  const double mu0eps = r.eps / 9;
+  for (Rule rule : kRules) remaining[to_string(rule)] = f.remaining[rule];
+  const double mu0eps = mu0_times(dbl.eps);
   j["final"] = {{"stars", f.stars},
                 {"star_cells", f.star_cells},
                 {"complex_simplices", f.complex_simplices},
@@ -197,7 +190,7 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
                 {"min_thickness", number(f.min_thickness)},
                 {"min_face_thickness_ratio", number(f.min_face_thickness_ratio)},
                 {"min_protection", number(f.min_protection)},
-                {"power_protection_bound", number(p.delta0 * p.delta0 * mu0eps * mu0eps)},
+                {"power_protection_bound", number(dbl.delta0 * dbl.delta0 * mu0eps * mu0eps)},
                 {"min_protection_ratio", number(f.min_protection_ratio)},
                 {"min_distance", number(f.min_distance)},
                 {"min_inserted_distance", number(f.min_inserted_distance)},
@@ -220,20 +213,19 @@ std::string make_report(const RefineResult& r, const RefineParameters& /*given*/
   return j.dump(2) + "\n";
 }
 
-void write_refine_output(const std::string& dir, const RefineResult& result, const RefineParameters& parameters,
-                         const OutputContext& context) {
+void write_refine_output(const std::string& dir, const RefineResult& result, const OutputContext& context) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw io::InputError(dir, 0, "cannot create the output directory: " + (ec ? ec.message() : std::string("not a directory")));
   const fs::path d(dir);
-  ClaimsOutcome claims = make_claims(result, parameters, context.text);
+  ClaimsOutcome claims = make_claims(result);
   // All four or none (each first complete in a temporary file, then renamed).
   io::write_files_atomically({{(d / "points.txt").string(), io::format_points(result.points)},
                               {(d / "complex.txt").string(), io::format_complex(result.complex)},
                               {(d / "claims.json").string(), claims.json},
-                              {(d / "report.json").string(), make_report(result, parameters, context, claims)}});
+                              {(d / "report.json").string(), make_report(result, context, claims)}});
 }
 
 }  // namespace delcert::refine

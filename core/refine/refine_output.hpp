@@ -1,7 +1,7 @@
 // What `delcert refine` writes (docs/design.md §9): DIR/points.txt, DIR/complex.txt, DIR/report.json
 // and DIR/claims.json, each atomically.
 //
-// claims.json ("delcert-claims v1", read by delcert-certify) holds only what the output keeps,
+// claims.json ("delcert-claims v1", io/claims.hpp) holds only what the output keeps,
 // by the producer's own measure, every value an exact rational string:
 //   eps               every star simplex has R_p(σ) < ε               (when no star cell is big)
 //   sparsity          every two points are farther apart than this:  μ0 ε = ε/9 when that holds,
@@ -16,26 +16,17 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/refine/refiner.hpp"
 
 namespace delcert::refine {
 
-// The user's parameters as exact rational text (the claims are derived from these, not from
-// the rounded doubles).
-struct ParameterText {
-  std::string eps;     // "" when derived (then RefineResult::eps_text is used)
-  std::string gamma0;
-  std::string alpha;
-  std::string beta;
-  std::string delta0;
-};
-
 struct OutputContext {
   std::string manifold;      // spec name
   std::string manifold_source;
   std::string input;         // the --points path, or a description of the generated ε-net
-  ParameterText text;
 };
 
 struct ClaimsOutcome {
@@ -43,13 +34,12 @@ struct ClaimsOutcome {
   std::vector<std::pair<std::string, std::string>> omitted;  // (claim, why)
 };
 
-ClaimsOutcome make_claims(const RefineResult& result, const RefineParameters& parameters, const ParameterText& text);
+// The claims, from the exact constants of result.parameters (not from the rounded doubles).
+ClaimsOutcome make_claims(const RefineResult& result);
 
-std::string make_report(const RefineResult& result, const RefineParameters& parameters, const OutputContext& context,
-                        const ClaimsOutcome& claims);
+std::string make_report(const RefineResult& result, const OutputContext& context, const ClaimsOutcome& claims);
 
 // Creates `dir` if missing and writes the four files atomically (claims and report last).
-void write_refine_output(const std::string& dir, const RefineResult& result, const RefineParameters& parameters,
-                         const OutputContext& context);
+void write_refine_output(const std::string& dir, const RefineResult& result, const OutputContext& context);
 
 }  // namespace delcert::refine

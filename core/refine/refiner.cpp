@@ -1,7 +1,5 @@
 #include "core/refine/refiner.hpp"
 
-#include <gmpxx.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,7 +21,6 @@
 #include "core/tangential/tangent_planes.hpp"
 #include "core/tangential/tangential_complex.hpp"
 #include "core/spatial/distance.hpp"
-#include "exact/polynomial.hpp"
 
 namespace delcert::refine {
 
@@ -40,28 +37,15 @@ const char* to_string(Rule r) {
   return "?";
 }
 
-std::string decimal_above(double x) {
-  if (!(x > 0) || !std::isfinite(x)) throw std::invalid_argument("decimal_above: needs a positive finite number");
-  const int e = static_cast<int>(std::floor(std::log10(x))) - 1;  // two significant digits: k 10^e
-  mpz_class p10;
-  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
-  for (long k = std::max(1L, static_cast<long>(std::floor(x / std::pow(10.0, e)))) ;; ++k) {
-    mpq_class q(k);
-    if (e >= 0)
-      q *= p10;
-    else
-      q /= p10;
-    q.canonicalize();
-    if (q.get_d() > x) return rational_to_string(q);  // the smallest such decimal whose double exceeds x
+const char* to_string(StopReason s) {
+  switch (s) {
+    case StopReason::converged: return "converged";
+    case StopReason::max_inserted: return "max_inserted";
+    case StopReason::max_rounds: return "max_rounds";
+    case StopReason::stalled: return "stalled";
+    case StopReason::time_limit: return "time_limit";
   }
-}
-
-std::string default_delta0(const std::string& gamma0, int m) {
-  const mpq_class g = parse_rational(gamma0);
-  mpq_class d(1);
-  for (int i = 0; i < (m + 2) / 2; ++i) d *= g;
-  d.canonicalize();
-  return rational_to_string(d);
+  return "?";
 }
 
 namespace {
@@ -113,11 +97,9 @@ class Refiner {
  public:
   Refiner(const Manifold& manifold, const io::PointSet& input, const RefineParameters& params)
       : M_(manifold), P_(params), m_(manifold.intrinsic_dimension()), N_(manifold.ambient_dimension()) {
-    if (P_.delta0 < 0) {
-      P_.delta0 = std::pow(P_.gamma0, (m_ + 2) / 2);
-      if (!P_.gamma0_text.empty()) P_.delta0_text = default_delta0(P_.gamma0_text, m_);
-    }
     validate(input);
+    resolve_delta0(P_.constants, m_);
+    refine::validate(P_.constants);
     paper_ = P_.mode == RefineMode::paper;
     if (P_.max_inserted == 0) P_.max_inserted = 20 * input.size() + 20000;
     if (P_.max_rounds == 0) P_.max_rounds = 2000;
@@ -132,10 +114,10 @@ class Refiner {
  private:
   void validate(const io::PointSet& input) const;
   void setup_eps();
-  double gamma_check() const { return paper_ ? P_.gamma0 : P_.gamma0 * (1 + kMargin); }
+  double gamma_check() const { return paper_ ? d_.gamma0 : d_.gamma0 * (1 + kMargin); }
   CosphOptions cosph_options(double radius2) const {
     CosphOptions o;
-    o.delta0 = P_.delta0;
+    o.delta0 = d_.delta0;
     if (!paper_) {
       o.length_floor = mu0_eps_;
       o.lower = -std::numeric_limits<double>::infinity();
@@ -150,7 +132,7 @@ class Refiner {
   void update_consistency(const std::vector<std::size_t>& changed);
   void set_mask(const CellKey& key, int bit, bool on);
   std::vector<Configuration> inconsistent_configurations() const;
-  std::array<std::size_t, kNumRules> pending() const;
+  PerRule<std::size_t> pending() const;
   bool stale(const Configuration& c, std::size_t round_start) const;
   std::optional<Eigen::VectorXd> produce(const Configuration& c, RuleStats& st);
   std::optional<Eigen::VectorXd> pick_valid(const Configuration& c, RuleStats& st);
@@ -161,6 +143,7 @@ class Refiner {
 
   const Manifold& M_;
   RefineParameters P_;
+  ConstantsAsDoubles d_;  // of P_.constants, once ε is set (setup_eps)
   int m_, N_;
   bool paper_ = false;
   double eps2_ = 0, mu0_eps_ = 0;
@@ -187,28 +170,20 @@ void Refiner::validate(const io::PointSet& input) const {
                                 ", the manifold's ambient dimension is " + std::to_string(N_));
   if (input.size() < static_cast<std::size_t>(m_ + 2))
     throw std::invalid_argument("refine: needs at least m + 2 = " + std::to_string(m_ + 2) + " points");
-  auto bad = [](const std::string& what) { throw std::invalid_argument("refine: " + what); };
-  if (!std::isfinite(P_.eps) || P_.eps < 0) bad("--eps must be a positive number");
-  if (!(P_.gamma0 > 0 && P_.gamma0 <= 1)) bad("--gamma0 must lie in (0, 1]");
-  if (!(P_.alpha > 0 && P_.alpha < 1)) bad("--alpha must lie in (0, 1) (the paper asks alpha < 1/2)");
-  if (!(P_.beta > 0) || !std::isfinite(P_.beta)) bad("--beta must be positive (the paper asks beta > 1)");
-  if (!(P_.delta0 >= 0 && P_.delta0 < 1)) bad("--delta0 must lie in [0, 1) (the paper asks delta0 < 1/4)");
 }
 
 void Refiner::setup_eps() {
-  if (P_.eps > 0) {
-    R_.eps = P_.eps;
-  } else {
+  if (!P_.constants.eps) {
     double max2 = 0;
     for (std::size_t p = 0; p < tc_.size(); ++p)
       if (tc_.star(p).closed) max2 = std::max(max2, tc_.star(p).max_radius2);
     if (!(max2 > 0)) throw std::invalid_argument("refine: cannot derive eps: no closed star; give --eps");
-    R_.eps_text = decimal_above(std::sqrt(max2));
-    R_.eps = parse_rational(R_.eps_text).get_d();
+    P_.constants.eps = ExactParameter(decimal_above(std::sqrt(max2)));
     R_.eps_derived = true;
   }
-  eps2_ = R_.eps * R_.eps;
-  mu0_eps_ = R_.eps / 9;
+  d_ = as_doubles(P_.constants);
+  eps2_ = d_.eps * d_.eps;
+  mu0_eps_ = mu0_times(d_.eps);
 }
 
 std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
@@ -332,11 +307,11 @@ std::vector<Configuration> Refiner::inconsistent_configurations() const {
   return out;
 }
 
-std::array<std::size_t, kNumRules> Refiner::pending() const {
-  std::array<std::size_t, kNumRules> n{};
+PerRule<std::size_t> Refiner::pending() const {
+  PerRule<std::size_t> n{};
   for (const auto& v : configs_)
-    for (const auto& c : v) ++n[static_cast<int>(c.rule)];
-  n[static_cast<int>(Rule::inconsistent)] = inconsistent_.size();
+    for (const auto& c : v) ++n[c.rule];
+  n[Rule::inconsistent] = inconsistent_.size();
   return n;
 }
 
@@ -370,12 +345,12 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
   PickingRegion region;
   region.centre = Eigen::Map<const Eigen::VectorXd>(c.centre.data(), N_);
   const double Rp = std::sqrt(c.radius2);
-  region.radius = P_.alpha * Rp;
+  region.radius = d_.alpha * Rp;
   region.tangent = planes_.matrix(c.p);
   HittingQuery hq;
-  hq.radius_bound = P_.beta * Rp;
-  hq.gamma0 = P_.gamma0;
-  hq.delta0 = P_.delta0;
+  hq.radius_bound = d_.beta * Rp;
+  hq.gamma0 = d_.gamma0;
+  hq.delta0 = d_.delta0;
   hq.max_set_size = m_ + 1;
   const double sparse2 = mu0_eps_ * mu0_eps_;
   // Practical fallback when every candidate is rejected: the best one seen, preferring those
@@ -420,7 +395,7 @@ bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
   R_.points.push_back(as_span(x));
   index_.push_back(as_span(x));
   R_.inserted_by.push_back(rule);
-  R_.rules[static_cast<int>(rule)].inserted++;
+  R_.rules[rule].inserted++;
   return true;
 }
 
@@ -438,7 +413,7 @@ bool Refiner::new_star_is_big(std::size_t x) {
 
 std::vector<std::size_t> Refiner::cosph_affected(std::size_t round_start) const {
   std::vector<char> mark(R_.points.size(), 0);
-  const double d2 = P_.delta0 * P_.delta0;
+  const double d2 = d_.delta0 * d_.delta0;
   const double floor2 = paper_ ? 0.0 : mu0_eps_ * mu0_eps_;
   const double R2 = max_radius2_;
   const double reach = std::sqrt(R2) + std::sqrt(R2 * (1 + 4 * d2) + d2 * floor2 + kMargin * R2) * (1 + kMargin);
@@ -476,13 +451,7 @@ RefineResult Refiner::run() {
   {
     HypothesesInput hi;
     hi.m = m_;
-    hi.eps = R_.eps;
-    hi.gamma0 = P_.gamma0;
-    hi.alpha = P_.alpha;
-    hi.beta = P_.beta;
-    hi.delta0 = P_.delta0;
-    hi.gamma0_text = P_.gamma0_text;
-    hi.delta0_text = P_.delta0_text;
+    hi.constants = P_.constants;
     if (M_.spec().reach) {
       hi.reach = std::sqrt(M_.spec().reach->squared.get_d());
       hi.reach_is_lower_bound = !M_.spec().reach->exact;
@@ -507,7 +476,7 @@ RefineResult Refiner::run() {
     R_.initial_inconsistent_stars = static_cast<std::size_t>(std::count(touched.begin(), touched.end(), 1));
     R_.initial_configurations = pending();
   }
-  R_.stop_reason = "converged";
+  R_.stop_reason = StopReason::converged;
   for (;;) {
     max_radius2_ = 0;
     open_stars_ = 0;
@@ -524,19 +493,19 @@ RefineResult Refiner::run() {
       pr.pending = counts;
       P_.progress(pr);
     }
-    const bool big = counts[0] > 0;
-    const bool rule2 = counts[1] + counts[2] > 0;
-    const bool practical_more = !paper_ && (counts[3] + counts[4] > 0);
+    const bool big = counts[Rule::big] > 0;
+    const bool rule2 = counts[Rule::bad_star] + counts[Rule::bad_cosph] > 0;
+    const bool practical_more = !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] > 0);
     if (!big && !rule2 && !practical_more) {
-      if (open_stars_ > 0) R_.stop_reason = "stalled";
+      if (open_stars_ > 0) R_.stop_reason = StopReason::stalled;
       break;
     }
     if (R_.rounds >= P_.max_rounds) {
-      R_.stop_reason = "max_rounds";
+      R_.stop_reason = StopReason::max_rounds;
       break;
     }
     if (P_.time_limit > 0 && seconds_since(t_start) > P_.time_limit) {
-      R_.stop_reason = "time_limit";
+      R_.stop_reason = StopReason::time_limit;
       break;
     }
     ++R_.rounds;
@@ -562,7 +531,7 @@ RefineResult Refiner::run() {
     const std::size_t round_start = R_.points.size();
     bool capped = false;
     for (const Configuration& c : batch) {
-      RuleStats& st = R_.rules[static_cast<int>(c.rule)];
+      RuleStats& st = R_.rules[c.rule];
       if (R_.points.size() - R_.input_size >= P_.max_inserted) {
         capped = true;
         break;
@@ -586,7 +555,7 @@ RefineResult Refiner::run() {
     }
     const std::size_t added = R_.points.size() - round_start;
     if (added == 0) {
-      R_.stop_reason = capped ? "max_inserted" : "stalled";
+      R_.stop_reason = capped ? StopReason::max_inserted : StopReason::stalled;
       break;
     }
     {
@@ -603,15 +572,14 @@ RefineResult Refiner::run() {
       R_.configuration_seconds += seconds_since(t2);
     }
     if (capped) {
-      R_.stop_reason = "max_inserted";
+      R_.stop_reason = StopReason::max_inserted;
       break;
     }
   }
-  R_.converged = R_.stop_reason == "converged";
+  R_.converged = R_.stop_reason == StopReason::converged;
   measure();
   R_.parameters = P_;
   R_.parameters.progress = nullptr;
-  R_.parameters.eps = R_.eps;
   R_.total_seconds = seconds_since(t_start);
   return std::move(R_);
 }
@@ -628,9 +596,9 @@ void Refiner::measure() {
   f.complex_simplices = R_.complex.simplices.size();
   f.inconsistent_simplices = assembly.inconsistent.size();
   f.remaining = pending();
-  f.remaining[static_cast<int>(Rule::inconsistent)] = assembly.inconsistent.size();
+  f.remaining[Rule::inconsistent] = assembly.inconsistent.size();
   const int k = m_ + 1;
-  const double dcheck2 = P_.delta0 * P_.delta0 * mu0_eps_ * mu0_eps_;
+  const double dcheck2 = d_.delta0 * d_.delta0 * mu0_eps_ * mu0_eps_;
   std::set<CellKey> inconsistent;
   for (const auto& s : assembly.inconsistent) inconsistent.insert(make_key(s));
   f.min_thickness = 1;
@@ -649,7 +617,7 @@ void Refiner::measure() {
       max_r2 = std::max(max_r2, st.radii2[c]);
       auto g = make_simplex(R_.points, cell);
       f.min_thickness = std::min(f.min_thickness, g.thickness());
-      f.min_face_thickness_ratio = std::min(f.min_face_thickness_ratio, g.goodness_ratio(P_.gamma0));
+      f.min_face_thickness_ratio = std::min(f.min_face_thickness_ratio, g.goodness_ratio(d_.gamma0));
       nidx.nearest(st.centre(c), static_cast<std::size_t>(k + 4), nn);
       for (const auto& [d2, q] : nn)
         if (std::find(cell.begin(), cell.end(), static_cast<int>(q)) == cell.end()) {
@@ -688,7 +656,7 @@ void Refiner::measure() {
   f.input_min_distance = std::sqrt(in2);
   f.consistent = f.inconsistent_simplices == 0 && f.open_stars == 0;
   f.all_good = std::isinf(f.min_face_thickness_ratio) || f.min_face_thickness_ratio >= 1;
-  f.all_small = f.max_radius < R_.eps * (1 - kMargin) && f.open_stars == 0;
+  f.all_small = f.max_radius < d_.eps * (1 - kMargin) && f.open_stars == 0;
   f.protected_claim = f.min_protection > dcheck2 * (1 + kMargin);
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/manifold/manifold.hpp"
 #include "core/refine/hypotheses.hpp"
+#include "core/refine/parameters.hpp"
 #include "io/complex.hpp"
 #include "io/points.hpp"
 
@@ -24,25 +25,32 @@ const char* to_string(RefineMode m);
 
 enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4 };
 inline constexpr int kNumRules = 5;
+inline constexpr std::array<Rule, kNumRules> kRules = {Rule::big, Rule::bad_star, Rule::bad_cosph, Rule::unprotected,
+                                                       Rule::inconsistent};
 const char* to_string(Rule r);
+
+// One T per rule, indexed by the rule.
+template <class T>
+struct PerRule {
+  std::array<T, kNumRules> values{};
+  T& operator[](Rule r) { return values[static_cast<std::size_t>(r)]; }
+  const T& operator[](Rule r) const { return values[static_cast<std::size_t>(r)]; }
+};
+
+// Why a run stopped; only `converged` is a success.
+enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit };
+const char* to_string(StopReason s);
 
 struct RefineProgress {
   std::size_t round = 0;
   std::size_t points = 0;
   std::size_t inserted = 0;
-  std::array<std::size_t, kNumRules> pending{};  // configurations per rule at the start of the round
+  PerRule<std::size_t> pending{};  // configurations per rule at the start of the round
 };
 
 struct RefineParameters {
   RefineMode mode = RefineMode::practical;
-  double eps = 0;       // <= 0: derived from the input (see RefineResult::eps_derived)
-  double gamma0 = 0.1;
-  double alpha = 0.3;
-  double beta = 1.1;
-  double delta0 = -1;   // < 0: default_delta0(gamma0, m), the largest power of Γ0 that satisfies H3
-  // Optional exact rational text of gamma0 and delta0 (what the user typed), for deciding H3
-  // exactly in the hypotheses report.
-  std::string gamma0_text, delta0_text;
+  Constants constants;  // ε, Γ0, α, β, δ0, exact
   std::uint64_t seed = 1;
   int threads = 1;
   // Caps: the run stops (not converged) when it would insert more than max_inserted points or
@@ -84,7 +92,7 @@ struct FinalMeasures {
   std::size_t open_stars = 0;                 // stars whose power cell is unbounded
   std::size_t inconsistent_simplices = 0;     // distinct simplices missing from a vertex's star
   std::size_t inconsistent_stars = 0;         // stars holding at least one inconsistent simplex
-  std::array<std::size_t, kNumRules> remaining{};  // configurations left, per rule (all five, any mode)
+  PerRule<std::size_t> remaining{};           // configurations left, per rule (all five, any mode)
   double max_radius = 0;                      // max R_p(σ) over star cells
   double min_thickness = 1;                   // min Υ over star cells (m-simplices)
   double min_face_thickness_ratio = 0;        // min over faces t (dim >= 2) of star cells of Υ(t) / Γ0^dim(t)
@@ -101,37 +109,26 @@ struct RefineResult {
   std::size_t input_size = 0;
   std::vector<Rule> inserted_by;  // per inserted point
   io::Complex complex;           // the union of the stars
-  double eps = 0;
-  bool eps_derived = false;      // eps came from the input's largest R_p (then eps_text is its decimal)
-  std::string eps_text;
-  bool converged = false;
-  std::string stop_reason;       // "converged", "max_inserted", "max_rounds", "stalled", "time_limit"
+  bool eps_derived = false;      // ε came from the input's largest R_p (decimal_above)
+  bool converged = false;        // stop_reason == StopReason::converged
+  StopReason stop_reason = StopReason::converged;
   std::size_t rounds = 0;
-  std::array<RuleStats, kNumRules> rules{};
+  PerRule<RuleStats> rules{};
   std::vector<SparsityViolation> sparsity_violations;
   std::size_t initial_inconsistent_simplices = 0;  // in the input's complex
   std::size_t initial_inconsistent_stars = 0;      // stars of the input holding an inconsistent simplex
-  std::array<std::size_t, kNumRules> initial_configurations{};  // per rule, in the input's complex
+  PerRule<std::size_t> initial_configurations{};  // per rule, in the input's complex
   double star_seconds = 0;           // initial complex and incremental star updates
   double configuration_seconds = 0;  // finding configurations (cosph, thickness, consistency)
   double total_seconds = 0;
   FinalMeasures final;
   HypothesesReport hypotheses;
-  RefineParameters parameters;   // as used: caps and attempts resolved, eps set, no progress callback
+  RefineParameters parameters;   // as used: caps and attempts resolved, ε and δ0 set, no progress callback
 };
 
 // Refines `input` (points on M) with the given parameters. Throws std::invalid_argument on bad
-// parameters (and names the parameter), std::domain_error when a point is not a regular point
-// of M.
+// input (ParameterError, naming the option, for a constant out of range), std::domain_error when
+// a point is not a regular point of M.
 RefineResult refine(const Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters);
-
-// The decimal with two significant digits just above x (x > 0), as text: 0.4712 -> "0.48".
-std::string decimal_above(double x);
-
-// The default δ0: Γ0^ceil((m+1)/2), so that δ0^2 <= Γ0^(m+1) (hypothesis H3). H3 keeps an
-// elementary weight from moving a weighted centre by more than the simplex's own size
-// (Lemma 4.1 (3)); with a larger δ0 almost every nearby (m+1)-simplex becomes a hitting set at
-// realistic ε and Pick_valid rejects nearly every candidate. As exact rational text.
-std::string default_delta0(const std::string& gamma0, int m);
 
 }  // namespace delcert::refine

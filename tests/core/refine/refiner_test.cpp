@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "core/tangential/tangential_complex.hpp"
+#include "exact/polynomial.hpp"
 #include "io/points.hpp"
 #include "io/spec.hpp"
 #include "tests/test_support.hpp"
@@ -20,6 +22,8 @@ namespace delcert::refine {
 namespace {
 
 Manifold builtin(const std::string& name) { return Manifold(io::read_spec("builtin:" + name)); }
+
+ExactParameter exact(const char* text) { return ExactParameter::parse(text); }
 
 io::PointSet net(const Manifold& M, double eps, std::uint64_t seed = 1) {
   EpsNetOptions o;
@@ -40,20 +44,20 @@ double dist(std::span<const double> a, std::span<const double> b) {
 // by more than δ0^2 (eps/9)^2 against every other point (brute force); every inserted point is
 // farther than eps/9 from the points before it.
 void expect_certified_by_own_measure(const Manifold& M, const RefineResult& r) {
-  const auto& P = r.parameters;
+  const ConstantsAsDoubles P = as_doubles(r.parameters.constants);
   auto planes = tangential::compute_tangent_planes(M, r.points);
   tangential::TangentialComplex tc(r.points, planes);
   auto a = tc.assemble();
   EXPECT_TRUE(a.inconsistent.empty()) << a.inconsistent.size() << " inconsistent simplices";
   EXPECT_EQ(a.complex.simplices, r.complex.simplices);
-  const double dcheck2 = P.delta0 * P.delta0 * (r.eps / 9) * (r.eps / 9);
+  const double dcheck2 = P.delta0 * P.delta0 * (P.eps / 9) * (P.eps / 9);
   std::size_t cells = 0;
   for (std::size_t p = 0; p < tc.size(); ++p) {
     const auto& st = tc.star(p);
     ASSERT_TRUE(st.closed);
     for (std::size_t c = 0; c < st.size(); ++c, ++cells) {
       const auto cell = st.cell(c);
-      EXPECT_LT(std::sqrt(st.radii2[c]), r.eps);
+      EXPECT_LT(std::sqrt(st.radii2[c]), P.eps);
       EXPECT_TRUE(make_simplex(r.points, cell).is_good(P.gamma0)) << "star " << p << " cell " << c;
       double worst = INFINITY;
       for (std::size_t q = 0; q < r.points.size(); ++q) {
@@ -68,14 +72,14 @@ void expect_certified_by_own_measure(const Manifold& M, const RefineResult& r) {
   for (std::size_t i = r.input_size; i < r.points.size(); ++i) {
     double d = INFINITY;
     for (std::size_t j = 0; j < i; ++j) d = std::min(d, dist(r.points.point(i), r.points.point(j)));
-    EXPECT_GT(d, r.eps / 9) << "inserted point " << i;
+    EXPECT_GT(d, P.eps / 9) << "inserted point " << i;
   }
   EXPECT_TRUE(r.sparsity_violations.empty());
   EXPECT_TRUE(r.final.consistent && r.final.all_good && r.final.all_small && r.final.protected_claim);
   for (std::size_t i = r.input_size; i < r.points.size(); ++i) EXPECT_LT(M.residual(r.points.point(i)), 1e-12);
 }
 
-std::size_t inserted(const RefineResult& r, Rule rule) { return r.rules[static_cast<int>(rule)].inserted; }
+std::size_t inserted(const RefineResult& r, Rule rule) { return r.rules[rule].inserted; }
 
 TEST(Refiner, RuleOneInsertsAtTheCentresOfBigCells) {
   // The octahedron's vertices on S^2: every star cell has R_p ≈ 0.8, far above eps = 0.5.
@@ -91,10 +95,10 @@ TEST(Refiner, RuleOneInsertsAtTheCentresOfBigCells) {
   for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
     RefineParameters p;
     p.mode = mode;
-    p.eps = 0.5;
+    p.constants.eps = exact("0.5");
     auto r = refine(M, octa, p);
-    EXPECT_TRUE(r.converged) << r.stop_reason;
-    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::big)], 0u);
+    EXPECT_TRUE(r.converged) << to_string(r.stop_reason);
+    EXPECT_GT(r.initial_configurations[Rule::big], 0u);
     EXPECT_GT(inserted(r, Rule::big), 0u);
     EXPECT_LT(r.final.max_radius, 0.5);
     EXPECT_EQ(r.input_size, 6u);
@@ -110,11 +114,11 @@ TEST(Refiner, RuleTwoRefinesSliversInTheStars) {
   for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
     RefineParameters p;
     p.mode = mode;
-    p.eps = 0.3;
-    p.gamma0 = 0.25;
+    p.constants.eps = exact("0.3");
+    p.constants.gamma0 = exact("0.25");
     auto r = refine(M, pts, p);
-    EXPECT_TRUE(r.converged) << r.stop_reason;
-    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::bad_star)], 0u);
+    EXPECT_TRUE(r.converged) << to_string(r.stop_reason);
+    EXPECT_GT(r.initial_configurations[Rule::bad_star], 0u);
     EXPECT_GT(inserted(r, Rule::bad_star), 0u);
     EXPECT_TRUE(r.final.all_good);
     EXPECT_GE(r.final.min_face_thickness_ratio, 1.0);
@@ -143,12 +147,12 @@ TEST(Refiner, RuleTwoBreaksQuasiCosphericalSimplices) {
     RefineParameters p;
     p.mode = mode;
     auto r = refine(M, grid, p);
-    EXPECT_TRUE(r.converged) << r.stop_reason;
+    EXPECT_TRUE(r.converged) << to_string(r.stop_reason);
     EXPECT_TRUE(r.eps_derived);
-    EXPECT_EQ(r.eps_text, "0.33");  // two digits above the grid's R_p = 0.3204
-    EXPECT_GT(r.initial_configurations[static_cast<int>(Rule::bad_cosph)], 0u);
+    EXPECT_EQ(r.parameters.constants.eps.value().text, "0.33");  // two digits above the grid's R_p = 0.3204
+    EXPECT_GT(r.initial_configurations[Rule::bad_cosph], 0u);
     EXPECT_GT(inserted(r, Rule::bad_cosph), 0u);
-    EXPECT_EQ(r.final.remaining[static_cast<int>(Rule::bad_cosph)], 0u);
+    EXPECT_EQ(r.final.remaining[Rule::bad_cosph], 0u);
     if (mode == RefineMode::practical) expect_certified_by_own_measure(M, r);
   }
 }
@@ -160,10 +164,10 @@ TEST(Refiner, PickValidRejectsHitCandidates) {
   auto pts = net(M, 0.4);
   RefineParameters p;
   p.mode = RefineMode::paper;
-  p.eps = 0.4;
-  p.delta0 = 0.1;
+  p.constants.eps = exact("0.4");
+  p.constants.delta0 = exact("0.1");
   auto r = refine(M, pts, p);
-  const auto& st = r.rules[static_cast<int>(Rule::bad_cosph)];
+  const auto& st = r.rules[Rule::bad_cosph];
   EXPECT_GT(st.rejected_hit, 0u);
   EXPECT_GT(st.inserted, 0u);
   EXPECT_EQ(st.candidates, st.rejected_hit + st.psi_failures + st.inserted) << "every candidate is rejected or inserted";
@@ -171,14 +175,14 @@ TEST(Refiner, PickValidRejectsHitCandidates) {
   // candidate is hit, and stops when a round inserts nothing.
   p.pick_attempts = 1;
   auto r1 = refine(M, pts, p);
-  EXPECT_GT(r1.rules[static_cast<int>(Rule::bad_cosph)].failures, 0u);
+  EXPECT_GT(r1.rules[Rule::bad_cosph].failures, 0u);
 }
 
 TEST(Refiner, InconsistencyRuleMakesTheStarsAgree) {
   Manifold M = builtin("clifford-torus-2");
   auto pts = net(M, 0.25);
   RefineParameters p;
-  p.eps = 0.25;
+  p.constants.eps = exact("0.25");
   p.mode = RefineMode::paper;
   auto paper = refine(M, pts, p);
   EXPECT_TRUE(paper.converged);
@@ -195,10 +199,10 @@ TEST(Refiner, UnprotectedRuleFiresOnSO3) {
   Manifold M = builtin("so3");
   auto pts = net(M, 0.6);
   RefineParameters p;
-  p.eps = 0.6;
+  p.constants.eps = exact("0.6");
   p.threads = 2;
   auto r = refine(M, pts, p);
-  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_TRUE(r.converged) << to_string(r.stop_reason);
   EXPECT_GT(inserted(r, Rule::unprotected), 0u);
   EXPECT_GT(inserted(r, Rule::inconsistent), 0u);
   expect_certified_by_own_measure(M, r);
@@ -206,7 +210,7 @@ TEST(Refiner, UnprotectedRuleFiresOnSO3) {
 
 struct CiCase {
   const char* manifold;
-  double eps;
+  const char* eps;
 };
 
 class CiSizedRefinement : public ::testing::TestWithParam<CiCase> {};
@@ -214,16 +218,16 @@ class CiSizedRefinement : public ::testing::TestWithParam<CiCase> {};
 TEST_P(CiSizedRefinement, OutputIsConsistentGoodAndProtected) {
   Manifold M = builtin(GetParam().manifold);
   RefineParameters p;
-  p.eps = GetParam().eps;
-  auto r = refine(M, net(M, p.eps), p);
-  EXPECT_TRUE(r.converged) << r.stop_reason;
-  EXPECT_EQ(r.stop_reason, "converged");
+  p.constants.eps = exact(GetParam().eps);
+  auto r = refine(M, net(M, std::atof(GetParam().eps)), p);
+  EXPECT_TRUE(r.converged) << to_string(r.stop_reason);
+  EXPECT_EQ(r.stop_reason, StopReason::converged);
   expect_certified_by_own_measure(M, r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Builtins, CiSizedRefinement,
-                         ::testing::Values(CiCase{"clifford-torus-2", 0.25}, CiCase{"sphere-2", 0.2},
-                                           CiCase{"torus-of-revolution", 0.3}, CiCase{"sphere-3", 0.3}),
+                         ::testing::Values(CiCase{"clifford-torus-2", "0.25"}, CiCase{"sphere-2", "0.2"},
+                                           CiCase{"torus-of-revolution", "0.3"}, CiCase{"sphere-3", "0.3"}),
                          [](const auto& info) {
                            std::string s = info.param.manifold;
                            for (auto& c : s)
@@ -251,18 +255,18 @@ TEST(Refiner, CapsStopTheRunAndSaySo) {
   Manifold M = builtin("sphere-2");
   auto pts = net(M, 0.3);
   RefineParameters p;
-  p.eps = 0.2;
+  p.constants.eps = exact("0.2");
   p.max_inserted = 3;
   auto r = refine(M, pts, p);
   EXPECT_FALSE(r.converged);
-  EXPECT_EQ(r.stop_reason, "max_inserted");
+  EXPECT_EQ(r.stop_reason, StopReason::max_inserted);
   EXPECT_EQ(r.points.size() - r.input_size, 3u);
   EXPECT_FALSE(r.final.all_small);
   p.max_inserted = 0;
   p.max_rounds = 1;
   auto r2 = refine(M, pts, p);
   EXPECT_FALSE(r2.converged);
-  EXPECT_EQ(r2.stop_reason, "max_rounds");
+  EXPECT_EQ(r2.stop_reason, StopReason::max_rounds);
   EXPECT_EQ(r2.rounds, 1u);
 }
 
@@ -270,26 +274,77 @@ TEST(Refiner, ParametersAreValidated) {
   Manifold M = builtin("sphere-2");
   auto pts = net(M, 0.5);
   RefineParameters p;
-  p.eps = 0.5;
-  p.gamma0 = 0;
+  p.constants.eps = exact("0.5");
+  p.constants.gamma0 = exact("0");
   EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
-  p.gamma0 = 0.1;
-  p.alpha = 1.5;
+  p.constants.gamma0 = exact("0.1");
+  p.constants.alpha = exact("1.5");
   EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
-  p.alpha = 0.3;
-  p.delta0 = 1;
+  p.constants.alpha = exact("0.3");
+  p.constants.delta0 = exact("1");
   EXPECT_THROW(refine(M, pts, p), std::invalid_argument);
 }
 
+// One validation, on the exact values, naming the option as `delcert refine` reports it. Γ0 just
+// above 1 and α just below 1 round to the double 1: validating the doubles got both wrong.
+TEST(Parameters, ValidatedExactlyWithTheOptionsMessages) {
+  auto message = [](const Constants& c) {
+    try {
+      validate(c);
+    } catch (const ParameterError& e) {
+      return std::string(e.what());
+    }
+    return std::string("valid");
+  };
+  Constants c;
+  EXPECT_EQ(message(c), "valid");
+  c.eps = exact("-1");
+  EXPECT_EQ(message(c), "--eps: must be positive");
+  c.eps = exact("1e-400");  // positive, but no positive double: the algorithm cannot run on it
+  EXPECT_EQ(message(c), "--eps: must be positive");
+  c.eps = exact("0.3");
+  c.gamma0 = exact("1.00000000000000000001");
+  EXPECT_EQ(message(c), "--gamma0: must lie in (0, 1]");
+  c.gamma0 = exact("1");
+  c.alpha = exact("0.99999999999999999999");
+  EXPECT_EQ(message(c), "valid");
+  c.alpha = exact("1/2");
+  c.beta = exact("0");
+  EXPECT_EQ(message(c), "--beta: must be positive; the paper takes beta > 1");
+  c.beta = exact("1.1");
+  resolve_delta0(c, 2);  // Γ0 = 1 gives δ0 = 1
+  EXPECT_EQ(c.delta0->text, "1");
+  EXPECT_EQ(message(c), "--delta0: must lie in [0, 1); the paper takes delta0 < 1/4");
+}
+
+// The constants keep the text they were given as (report.json echoes it) and the exact value
+// (claims.json writes it); the derived doubles are the values rounded towards zero.
+TEST(Parameters, TextValueAndDoubles) {
+  Constants c;
+  c.eps = exact("1/4");
+  c.gamma0 = exact("1e-1");
+  EXPECT_EQ(c.gamma0.text, "1e-1");
+  EXPECT_EQ(c.gamma0.value, mpq_class(1, 10));
+  EXPECT_EQ(ExactParameter(mpq_class(1, 10)).text, "0.1");
+  resolve_delta0(c, 3);
+  EXPECT_EQ(c.delta0->value, mpq_class(1, 100));
+  const ConstantsAsDoubles d = as_doubles(c);
+  EXPECT_EQ(d.eps, 0.25);
+  EXPECT_EQ(mpq_class(d.gamma0), mpq_class(mpq_class(1, 10).get_d()));
+  EXPECT_LE(mpq_class(d.gamma0), mpq_class(1, 10));
+  EXPECT_EQ(mu0_times(d.eps), 0.25 / 9);
+  EXPECT_EQ(mu0_times(mpq_class(1, 4)), mpq_class(1, 36));
+}
+
 TEST(Refiner, DecimalAboveAndDefaultDelta0) {
-  EXPECT_EQ(decimal_above(0.4712), "0.48");
-  EXPECT_EQ(decimal_above(0.47), "0.48");
-  EXPECT_EQ(decimal_above(3.2), "3.3");
-  EXPECT_EQ(decimal_above(0.00999), "0.01");
-  EXPECT_EQ(decimal_above(12.0), "13");
-  EXPECT_EQ(default_delta0("0.1", 2), "0.01");
-  EXPECT_EQ(default_delta0("0.1", 3), "0.01");
-  EXPECT_EQ(default_delta0("1/5", 4), "0.008");
+  EXPECT_EQ(decimal_above(0.4712), parse_rational("0.48"));
+  EXPECT_EQ(decimal_above(0.47), parse_rational("0.48"));
+  EXPECT_EQ(decimal_above(3.2), parse_rational("3.3"));
+  EXPECT_EQ(decimal_above(0.00999), parse_rational("0.01"));
+  EXPECT_EQ(decimal_above(12.0), parse_rational("13"));
+  EXPECT_EQ(default_delta0(parse_rational("0.1"), 2), parse_rational("0.01"));
+  EXPECT_EQ(default_delta0(parse_rational("0.1"), 3), parse_rational("0.01"));
+  EXPECT_EQ(default_delta0(parse_rational("1/5"), 4), parse_rational("0.008"));
 }
 
 }  // namespace

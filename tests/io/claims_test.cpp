@@ -1,10 +1,12 @@
 #include <gtest/gtest.h>
 
-#include "certify/claims.hpp"
-#include "io/input_error.hpp"
-#include "support.hpp"
+#include "io/claims.hpp"
 
-namespace delcert::certify {
+#include "exact/polynomial.hpp"
+#include "io/input_error.hpp"
+#include "tests/test_support.hpp"
+
+namespace delcert::io {
 namespace {
 
 TEST(Claims, ParsesExactRationals) {
@@ -24,7 +26,7 @@ void expect_error(const std::string& text, long line, const std::string& fragmen
   try {
     parse_claims(text, "c.json");
     FAIL() << "accepted: " << text;
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.line(), line) << e.what();
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).rfind("c.json:" + std::to_string(line) + ":", 0), 0u) << e.what();
@@ -54,7 +56,7 @@ TEST(Claims, DuplicateKeysAreRefused) {
   try {
     read_claims(test::fixture("soundness/parse/claims-dupkey.json"));
     FAIL();
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 1);
     EXPECT_NE(std::string(e.what()).find("duplicate key \"eps\""), std::string::npos) << e.what();
   }
@@ -77,5 +79,38 @@ TEST(Claims, IntegersAreReadExactly) {
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": 1e3}", 2, "found 1e3");
 }
 
+// The writer and the reader agree: what format_claims writes, parse_claims reads back to the same
+// exact rationals, whether a value has a finite decimal expansion ("0.1") or not ("1/3"), is
+// tiny, huge, zero or an integer, and whichever claims are left out.
+TEST(Claims, WriteThenReadGivesTheSameRationals) {
+  const mpq_class values[] = {mpq_class(1, 10), mpq_class(1, 3), mpq_class(1, 12960000), mpq_class(0),
+                              mpq_class(1), parse_rational("123456789012345678901234567891/7"),
+                              parse_rational("1e-300"), mpq_class(2, 3)};
+  for (int mask = 0; mask < 16; ++mask)
+    for (const mpq_class& v : values) {
+      Claims c;
+      mpq_class eps = v == 0 ? mpq_class(1, 7) : mpq_class(abs(v));  // eps must be positive
+      if (mask & 1) c.eps = eps;
+      if (mask & 2) c.sparsity = abs(v);
+      if (mask & 4) c.gamma0 = mpq_class(1, 3);  // must lie in (0, 1]
+      if (mask & 8) c.power_protection = abs(v) * abs(v);
+      const std::string text = format_claims(c);
+      const Claims back = parse_claims(text, "round-trip.json");
+      EXPECT_EQ(back, c) << text;
+      EXPECT_EQ(format_claims(back), text);
+    }
+}
+
+// The writer's bytes, which claims.json files and their SHA-256 in certificates depend on.
+TEST(Claims, WriterLayout) {
+  Claims c;
+  c.eps = mpq_class(1, 4);
+  c.sparsity = mpq_class(1, 36);
+  c.power_protection = mpq_class(1, 12960000);
+  EXPECT_EQ(format_claims(c), "{\n  \"format\": \"delcert-claims v1\",\n  \"eps\": \"0.25\",\n  \"sparsity\": \"1/36\",\n"
+                              "  \"power_protection\": \"1/12960000\"\n}\n");
+  EXPECT_EQ(format_claims(Claims{}), "{\n  \"format\": \"delcert-claims v1\"\n}\n");
+}
+
 }  // namespace
-}  // namespace delcert::certify
+}  // namespace delcert::io

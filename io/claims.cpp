@@ -1,23 +1,25 @@
-#include "certify/claims.hpp"
+#include "io/claims.hpp"
 
 #include <nlohmann/json.hpp>
+
+#include <utility>
 
 #include "exact/polynomial.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/strict_json.hpp"
 
-namespace delcert::certify {
+namespace delcert::io {
 
 Claims parse_claims(const std::string& text, const std::string& file) {
   using nlohmann::json;
   // Strict: a repeated key is refused (a DOM keeps the last one silently), every number is read
   // as written, and every message names the line.
-  const io::StrictJson doc = io::StrictJson::parse(text, file);
+  const StrictJson doc = StrictJson::parse(text, file);
   const json& j = doc.root();
-  if (!j.is_object()) throw io::InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v1\", ...}");
+  if (!j.is_object()) throw InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v1\", ...}");
   if (!j.contains("format") || j.at("format") != "delcert-claims v1")
-    throw io::InputError(file, doc.line("format"),
+    throw InputError(file, doc.line("format"),
                          "expected \"format\": \"delcert-claims v1\"; this reader knows version 1 only");
   Claims c;
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -30,7 +32,7 @@ Claims parse_claims(const std::string& text, const std::string& file) {
                                      : key == "power_protection" ? &c.power_protection
                                                                  : nullptr;
     if (!slot)
-      throw io::InputError(file, line, "unknown claim '" + key + "'; known: eps, sparsity, gamma0, power_protection");
+      throw InputError(file, line, "unknown claim '" + key + "'; known: eps, sparsity, gamma0, power_protection");
     const json& v = it.value();
     if (v.is_null()) continue;
     mpq_class q;
@@ -40,21 +42,31 @@ Claims parse_claims(const std::string& text, const std::string& file) {
       try {
         q = parse_rational(v.get<std::string>());
       } catch (const std::invalid_argument& e) {
-        throw io::InputError(file, line, "claim '" + key + "': " + e.what());
+        throw InputError(file, line, "claim '" + key + "': " + e.what());
       }
     } else {
-      throw io::InputError(file, line,
+      throw InputError(file, line,
                            "claim '" + key + "' must be an exact rational written as a string, e.g. \"0.05\" or \"1/20\", "
                            "or a JSON integer; found " + (doc.number_text(key) ? *doc.number_text(key) : v.dump()));
     }
     if (q < 0 || (key == "eps" && q == 0))
-      throw io::InputError(file, line, "claim '" + key + "' must be " + (key == "eps" ? "positive" : "non-negative"));
-    if (key == "gamma0" && !(q > 0 && q <= 1)) throw io::InputError(file, line, "claim 'gamma0' must lie in (0, 1]");
+      throw InputError(file, line, "claim '" + key + "' must be " + (key == "eps" ? "positive" : "non-negative"));
+    if (key == "gamma0" && !(q > 0 && q <= 1)) throw InputError(file, line, "claim 'gamma0' must lie in (0, 1]");
     *slot = q;
   }
   return c;
 }
 
-Claims read_claims(const std::string& path) { return parse_claims(io::read_file(path), path); }
+Claims read_claims(const std::string& path) { return parse_claims(read_file(path), path); }
 
-}  // namespace delcert::certify
+std::string format_claims(const Claims& c) {
+  nlohmann::ordered_json j;
+  j["format"] = "delcert-claims v1";
+  const std::pair<const char*, const std::optional<mpq_class>*> keys[] = {
+      {"eps", &c.eps}, {"sparsity", &c.sparsity}, {"gamma0", &c.gamma0}, {"power_protection", &c.power_protection}};
+  for (const auto& [key, value] : keys)
+    if (*value) j[key] = rational_to_string(**value);
+  return j.dump(2) + "\n";
+}
+
+}  // namespace delcert::io

@@ -1,4 +1,4 @@
-// claims.json: what a producer promises about its output (docs/design.md §9, docs/certificate.md). Each claim becomes a
+// claims.json ("delcert-claims v1"): what a producer promises about its output (docs/design.md §9, docs/certificate.md). Each claim becomes a
 // check in the certificate. Every value is an exact rational written as a JSON string
 // ("0.05", "1/20", "2.5e-3") or a JSON integer; JSON floating-point numbers are refused
 // because they are already rounded to binary.
@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-namespace delcert::certify {
+namespace delcert::io {
 
 struct Claims {
   std::optional<mpq_class> eps;               // > 0
@@ -27,10 +27,16 @@ struct Claims {
   std::optional<mpq_class> gamma0;            // in (0, 1]
   std::optional<mpq_class> power_protection;  // >= 0, squared distance
   bool any() const { return eps || sparsity || gamma0 || power_protection; }
+  bool operator==(const Claims&) const = default;
 };
 
 // Throws io::InputError("file:line: ...") naming the offending key.
 Claims parse_claims(const std::string& json_text, const std::string& file);
 Claims read_claims(const std::string& path);
 
-}  // namespace delcert::certify
+// The claims.json text: the keys in the order above (absent claims left out), every value
+// written exactly by rational_to_string, indented by two, ending in a newline. parse_claims reads
+// it back to the same values.
+std::string format_claims(const Claims& claims);
+
+}  // namespace delcert::io

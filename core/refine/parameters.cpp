@@ -1,0 +1,86 @@
+#include "core/refine/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "exact/polynomial.hpp"
+
+namespace delcert::refine {
+
+mpq_class mu0_times(const mpq_class& x) {
+  mpq_class r = x / kMu0Reciprocal;
+  r.canonicalize();
+  return r;
+}
+
+ExactParameter::ExactParameter(const mpq_class& q) : value(q), text(rational_to_string(q)) { value.canonicalize(); }
+
+ExactParameter ExactParameter::parse(std::string_view text) {
+  ExactParameter p;
+  p.value = parse_rational(text);
+  p.text = std::string(text);
+  return p;
+}
+
+namespace {
+
+bool positive_double(const mpq_class& q) {
+  const double d = q.get_d();
+  return d > 0 && std::isfinite(d);
+}
+
+}  // namespace
+
+void validate_eps(const ExactParameter& eps) {
+  if (!(eps.value > 0 && positive_double(eps.value))) throw ParameterError("--eps", "must be positive");
+}
+
+void validate(const Constants& c) {
+  if (c.eps) validate_eps(*c.eps);
+  if (!(c.gamma0.value > 0 && c.gamma0.value <= 1)) throw ParameterError("--gamma0", "must lie in (0, 1]");
+  if (!(c.alpha.value > 0 && c.alpha.value < 1))
+    throw ParameterError("--alpha", "must lie in (0, 1); the paper takes alpha < 1/2");
+  if (!(c.beta.value > 0 && positive_double(c.beta.value)))
+    throw ParameterError("--beta", "must be positive; the paper takes beta > 1");
+  if (c.delta0 && !(c.delta0->value >= 0 && c.delta0->value < 1))
+    throw ParameterError("--delta0", "must lie in [0, 1); the paper takes delta0 < 1/4");
+}
+
+ConstantsAsDoubles as_doubles(const Constants& c) {
+  ConstantsAsDoubles d;
+  d.eps = c.eps.value().value.get_d();
+  d.gamma0 = c.gamma0.value.get_d();
+  d.alpha = c.alpha.value.get_d();
+  d.beta = c.beta.value.get_d();
+  d.delta0 = c.delta0.value().value.get_d();
+  return d;
+}
+
+mpq_class default_delta0(const mpq_class& gamma0, int m) {
+  mpq_class d(1);
+  for (int i = 0; i < (m + 2) / 2; ++i) d *= gamma0;
+  d.canonicalize();
+  return d;
+}
+
+void resolve_delta0(Constants& c, int m) {
+  if (!c.delta0) c.delta0 = ExactParameter(default_delta0(c.gamma0.value, m));
+}
+
+mpq_class decimal_above(double x) {
+  if (!(x > 0) || !std::isfinite(x)) throw std::invalid_argument("decimal_above: needs a positive finite number");
+  const int e = static_cast<int>(std::floor(std::log10(x))) - 1;  // two significant digits: k 10^e
+  mpz_class p10;
+  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
+  for (long k = std::max(1L, static_cast<long>(std::floor(x / std::pow(10.0, e))));; ++k) {
+    mpq_class q(k);
+    if (e >= 0)
+      q *= p10;
+    else
+      q /= p10;
+    q.canonicalize();
+    if (q.get_d() > x) return q;
+  }
+}
+
+}  // namespace delcert::refine
