@@ -87,43 +87,7 @@ struct Stopwatch {
   }
 };
 
-// Line of the counts header of a complex file (the second non-empty line), for error messages.
-long counts_line(const std::string& text) {
-  long line = 0, seen = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    ++line;
-    std::string l = text.substr(pos, end - pos);
-    pos = end + 1;
-    if (auto h = l.find('#'); h != std::string::npos) l.resize(h);
-    if (l.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (++seen == 2 || (seen == 1 && l.find_first_of("0123456789") != std::string::npos)) return line;
-  }
-  return line;
-}
-
 }  // namespace
-
-std::string with_line(const io::InputError& e) {
-  std::string what = e.what();
-  if (e.line() > 0 || e.file().rfind("builtin:", 0) == 0) return what;
-  auto f = what.find("field '");
-  if (f == std::string::npos) return what;
-  std::string field = what.substr(f + 7, what.find('\'', f + 7) - f - 7);
-  std::string key = field.substr(field.find_last_of('.') + 1);
-  key = key.substr(0, key.find('['));
-  std::string text;
-  try {
-    text = io::read_file(e.file());
-  } catch (const io::InputError&) {
-    return what;
-  }
-  auto pos = text.find("\"" + key + "\"");
-  if (pos == std::string::npos) return what;
-  long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-  return e.file() + ":" + std::to_string(line) + what.substr(e.file().size());
-}
 
 Certificate run_certify(const CertifyOptions& o) {
   using clock = std::chrono::steady_clock;
@@ -141,28 +105,26 @@ Certificate run_certify(const CertifyOptions& o) {
     throw io::InputError(o.manifold, 0, "intrinsic dimension " + std::to_string(m) + " is above the supported maximum " +
                                             std::to_string(exact::kMaxTangentDimension));
   std::string points_text = io::read_file(o.points);
-  io::PointSet P = io::parse_points(points_text, o.points, io::PointReadOptions{N, true});
+  io::PointsFile points = io::parse_points_file(points_text, o.points, io::PointReadOptions{N, true});
+  const io::PointSet& P = points.points;
   if (P.size() < static_cast<std::size_t>(m + 2))
     throw io::InputError(o.points, 0, "only " + std::to_string(P.size()) + " points: a closed " + std::to_string(m) +
                                           "-manifold needs at least m + 2 = " + std::to_string(m + 2));
-  std::vector<long> lines = point_line_numbers(points_text);
   std::optional<io::Complex> given;
   std::string complex_text;
   if (!o.complex.empty()) {
     complex_text = io::read_file(o.complex);
     io::ComplexFile cf = io::parse_complex(complex_text, o.complex);
     if (cf.complex.num_vertices != P.size())
-      throw io::InputError(o.complex, counts_line(complex_text),
+      throw io::InputError(o.complex, cf.counts_line,
                            "the complex has " + std::to_string(cf.complex.num_vertices) + " vertices but " + o.points +
                                " has " + std::to_string(P.size()) + " points; they must describe the same vertex set");
-    if (cf.embedded_points) {
-      auto clines = point_line_numbers(complex_text);
+    if (cf.embedded_points)
       for (std::size_t i = 0; i < P.size(); ++i)
         if (!std::equal(P.point(i).begin(), P.point(i).end(), cf.embedded_points->point(i).begin()))
-          throw io::InputError(o.complex, i < clines.size() ? clines[i] : 0,
+          throw io::InputError(o.complex, cf.embedded_point_lines[i],
                                "vertex " + std::to_string(i) + " differs from point " + std::to_string(i) + " of " +
                                    o.points + "; pass the same points to --points");
-    }
     given = cf.complex;
   }
   Claims claims;
@@ -200,7 +162,7 @@ Certificate run_certify(const CertifyOptions& o) {
 
   // ---- Checks 1 and 2 ------------------------------------------------------------------------
   Stopwatch watch;
-  C.checks.push_back(check_input_sanity(spec, P, lines, o.points, threads));
+  C.checks.push_back(check_input_sanity(spec, P, points.lines, o.points, threads));
   watch.record(C, "input_sanity");
   exact::ImplicitSystem system(spec.equations, N);
   PointGrid grid(P, m);

@@ -34,8 +34,4 @@ struct CertifyOptions {
 // Throws io::InputError on bad input (exit status 2); never writes anything.
 Certificate run_certify(const CertifyOptions& options);
 
-// The error's message, with the line added when the reader named a JSON field but no line
-// (spec and claims errors read "FILE: field 'a.b': ..."; the line of "b" is looked up in FILE).
-std::string with_line(const io::InputError& error);
-
 }  // namespace delcert::certify

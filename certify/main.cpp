@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     return v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;
   } catch (const io::InputError& e) {
-    std::cerr << "delcert-certify: " << certify::with_line(e) << "\n";
+    std::cerr << "delcert-certify: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     // Not bad input: an internal failure. Nothing was certified.

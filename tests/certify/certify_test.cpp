@@ -213,5 +213,42 @@ TEST(Certify, ExactlyDegenerateInputIsNeverCertified) {
   EXPECT_EQ(check(c, 8).verdict, Verdict::certified);  // the complex itself is a fine torus
 }
 
+// Bad input names the line the parser read it from. Before the readers returned line numbers the
+// certifier rescanned the text, and took a leading comment for the header: a point of an OFF file
+// with a one-line header ("OFF 6 0 0") was named by the next point's line, and a delcert-complex
+// file's vertex count by line 1 (the "1" of "v1" looked like a count).
+TEST(Certify, BadInputIsNamedByTheLineItIsOn) {
+  TempDir dir("lines");
+  auto line_of_error = [](const CertifyOptions& o) -> long {
+    try {
+      run_certify(o);
+    } catch (const io::InputError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  const std::string octahedron = "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n";
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  // Point 2 is off the sphere.
+  for (const auto& [header, line] : {std::pair<std::string, long>{"# the octahedron, one vertex moved\nOFF 6 0 0\n", 5},
+                                     std::pair<std::string, long>{"# c\nnOFF\n3\n6 0 0\n", 7}}) {
+    SCOPED_TRACE(header);
+    o.points = dir.file("moved.off");
+    write_text(o.points, header + "1 0 0\n-1 0 0\n0 1.5 0\n0 -1 0\n0 0 1\n0 0 -1\n");
+    EXPECT_EQ(line_of_error(o), line);
+  }
+  // An OFF complex whose vertex 3 differs from point 3: line 6.
+  o.points = dir.file("points.off");
+  write_text(o.points, "OFF\n6 0 0\n" + octahedron);
+  o.complex = dir.file("complex.off");
+  write_text(o.complex, "# c\nOFF 6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1.5 0\n0 0 1\n0 0 -1\n"
+                        "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n");
+  EXPECT_EQ(line_of_error(o), 6);
+  // A complex on 5 vertices for 6 points: the vertex count is on line 2.
+  o.complex = fixture("certify/octahedron-wrong-count.complex");
+  EXPECT_EQ(line_of_error(o), 2);
+}
+
 }  // namespace
 }  // namespace delcert::certify::test
