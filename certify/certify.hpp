@@ -1,4 +1,5 @@
-// delcert-certify's driver: reads the inputs, runs checks 1-10 and assembles the certificate.
+// delcert-certify's driver: reads each input once, runs checks 1-10 (one function each; their
+// numbers and names are CheckId in certificate.hpp) and assembles the certificate.
 //
 //   1 input_sanity       points near M (exact residuals, certified distance), right component, full-rank Jacobian
 //   2 sparsity           exact minimum distance and its pair; the sparsity claim

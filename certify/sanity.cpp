@@ -116,9 +116,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                                "too far from M; fix the spec or project the point onto M");
     distance[idx] = d.distance_upper;
   });
-  CheckEntry e;
-  e.id = 1;
-  e.name = "input_sanity";
+  CheckEntry e(CheckId::input_sanity);
   std::size_t arg = 0;
   for (std::size_t i = 1; i < n; ++i)
     if (worst[i] > worst[arg]) arg = i;
@@ -153,8 +151,6 @@ SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid,
                               exact::FilterContext& ctx) {
   SparsityResult R;
   CheckEntry& e = R.entry;
-  e.id = 2;
-  e.name = "sparsity";
   const std::size_t n = points.size();
   const int N = points.dimension;
   if (n < 2) {

@@ -33,7 +33,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
 // Check 2: the exact minimum squared distance and the pair realising it (smallest indices among
 // ties), compared with the claimed sparsity (distance > claim) when given.
 struct SparsityResult {
-  CheckEntry entry;
+  CheckEntry entry{CheckId::sparsity};
   mpq_class min_squared;  // exact
   int i = -1, j = -1;
 };
