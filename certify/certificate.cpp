@@ -18,6 +18,14 @@ const char* to_string(Verdict v) {
   return "?";
 }
 
+const char* check_name(CheckId id) {
+  static constexpr const char* names[] = {"input_sanity",     "sparsity",         "stars",    "consistency",
+                                          "thickness",        "power_protection", "secure_simplices",
+                                          "topology",         "theorem",          "star_radius"};
+  const int k = check_number(id);
+  return k >= 1 && k <= 10 ? names[k - 1] : "?";
+}
+
 void CheckEntry::refute(std::string why) {
   if (verdict == Verdict::report) return;
   if (verdict != Verdict::refuted) details["reason"] = std::move(why);
@@ -52,7 +60,7 @@ std::vector<std::string> Certificate::self_check_failures() const {
       // Written so that NaN fails too.
       const bool ok = r.at_least ? r.value >= r.bound : r.value <= r.bound;
       if (!ok)
-        out.push_back("check " + std::to_string(c.id) + " (" + c.name + ") is CERTIFIED but its certified " + r.what + " " +
+        out.push_back("check " + std::to_string(c.number()) + " (" + c.name() + ") is CERTIFIED but its certified " + r.what + " " +
                       num(r.value) + (r.at_least ? " is below " : " is above ") + r.bound_text);
     }
   }
@@ -86,8 +94,8 @@ json Certificate::to_json(bool with_times) const {
   json cs = json::array();
   for (const auto& c : checks) {
     json e;
-    e["id"] = c.id;
-    e["name"] = c.name;
+    e["id"] = c.number();
+    e["name"] = c.name();
     e["verdict"] = to_string(c.verdict);
     e["summary"] = c.summary;
     e["claim"] = c.claim;

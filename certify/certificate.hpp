@@ -22,9 +22,19 @@ namespace delcert::certify {
 enum class Verdict { certified, refuted, undecided, report };
 const char* to_string(Verdict v);
 
+// The ten checks, by their number in the certificate (certify/certify.hpp lists what each decides).
+enum class CheckId {
+  input_sanity = 1, sparsity = 2, stars = 3, consistency = 4, thickness = 5,
+  power_protection = 6, secure_simplices = 7, topology = 8, theorem = 9, star_radius = 10,
+};
+// The number and the name written in the certificate ("id", "name").
+constexpr int check_number(CheckId id) { return static_cast<int>(id); }
+const char* check_name(CheckId id);
+
 struct CheckEntry {
-  int id = 0;
-  std::string name;
+  explicit CheckEntry(CheckId check) : id(check) {}
+
+  CheckId id;
   Verdict verdict = Verdict::certified;
   std::string summary;                                 // one human-readable line
   nlohmann::json claim;                                // the claim decided, or null
@@ -54,6 +64,9 @@ struct CheckEntry {
   std::vector<Requirement> requirements;
   void require_at_least(std::string what, double certified_lower_bound, const mpq_class& bound);
   void require_at_most(std::string what, double certified_upper_bound, const mpq_class& bound);
+
+  int number() const { return check_number(id); }
+  const char* name() const { return check_name(id); }
 };
 
 struct Certificate {

@@ -5,9 +5,9 @@
 #include <ctime>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
-#include "io/claims.hpp"
 #include "certify/grid.hpp"
 #include "certify/parallel.hpp"
 #include "certify/sanity.hpp"
@@ -19,6 +19,7 @@
 #include "exact/number_types.hpp"
 #include "exact/tangent_predicates.hpp"
 #include "io/atomic_file.hpp"
+#include "io/claims.hpp"
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
 #include "io/spec.hpp"
@@ -29,19 +30,22 @@ using nlohmann::json;
 
 namespace {
 
-enum class Member { no, yes, unknown };
+using exact::Tri;
 
 // Is s in star(v)? Proven yes, proven no, or unknown, from the analysis of v.
 // (s is an m-simplex containing r.p; in verify mode it is one of the claimed simplices at r.p.)
-Member member(const StarReport& r, const Simplex& s) {
-  if (r.claimed_verified) return Member::yes;
+Tri member(const StarReport& r, const Simplex& s) {
+  if (r.claimed_verified) return Tri::yes;
   for (const auto& c : r.claimed)
-    if (c.simplex == s && (c.degenerate || c.conflict >= 0)) return Member::no;  // a point in its ball
-  if (r.state != StarReport::State::proven) return Member::unknown;
+    if (c.simplex == s && (c.degenerate || c.conflict >= 0)) return Tri::no;  // a point in its ball
+  if (r.state != StarReport::State::proven) return Tri::unknown;
   for (const auto& c : r.star)
-    if (c.simplex == s) return Member::yes;
-  return Member::no;
+    if (c.simplex == s) return Tri::yes;
+  return Tri::no;
 }
+
+// Three-valued (Kleene) disjunction: yes if either is yes, no if both are no, else unknown.
+Tri either(Tri a, Tri b) { return !(!a && !b); }
 
 const CellReport* find_cell(const std::vector<CellReport>& cells, const Simplex& s) {
   for (const auto& c : cells)
@@ -87,98 +91,71 @@ struct Stopwatch {
   }
 };
 
-// Line of the counts header of a complex file (the second non-empty line), for error messages.
-long counts_line(const std::string& text) {
-  long line = 0, seen = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    ++line;
-    std::string l = text.substr(pos, end - pos);
-    pos = end + 1;
-    if (auto h = l.find('#'); h != std::string::npos) l.resize(h);
-    if (l.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (++seen == 2 || (seen == 1 && l.find_first_of("0123456789") != std::string::npos)) return line;
-  }
-  return line;
-}
+// ---- Inputs ----------------------------------------------------------------------------------
 
-}  // namespace
+// The inputs, each read once: the bytes parsed are the bytes hashed into the certificate.
+struct Inputs {
+  std::string spec_text, points_text, complex_text, claims_text;
+  io::ManifoldSpec spec;
+  io::PointSet points;
+  std::vector<long> point_lines;     // line of each point in the points file
+  std::optional<io::Complex> given;  // the complex to verify; none in audit mode
+  io::Claims claims;
+};
 
-std::string with_line(const io::InputError& e) {
-  std::string what = e.what();
-  if (e.line() > 0 || e.file().rfind("builtin:", 0) == 0) return what;
-  auto f = what.find("field '");
-  if (f == std::string::npos) return what;
-  std::string field = what.substr(f + 7, what.find('\'', f + 7) - f - 7);
-  std::string key = field.substr(field.find_last_of('.') + 1);
-  key = key.substr(0, key.find('['));
-  std::string text;
-  try {
-    text = io::read_file(e.file());
-  } catch (const io::InputError&) {
-    return what;
-  }
-  auto pos = text.find("\"" + key + "\"");
-  if (pos == std::string::npos) return what;
-  long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-  return e.file() + ":" + std::to_string(line) + what.substr(e.file().size());
-}
-
-Certificate run_certify(const CertifyOptions& o) {
-  using clock = std::chrono::steady_clock;
-  const auto t_start = clock::now();
-  const std::clock_t cpu_start = std::clock();
-  Certificate C;
-  const int threads = std::max(1, o.threads);
-
-  // ---- Inputs ------------------------------------------------------------------------------
-  // Each input is read once: the bytes parsed are the bytes hashed into the certificate.
-  const std::string spec_text = io::read_spec_text(o.manifold);
-  io::ManifoldSpec spec = io::parse_spec(spec_text, o.manifold);
-  const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
+Inputs read_inputs(const CertifyOptions& o) {
+  Inputs in;
+  in.spec_text = io::read_spec_text(o.manifold);
+  in.spec = io::parse_spec(in.spec_text, o.manifold);
+  const int N = in.spec.ambient_dimension, m = in.spec.intrinsic_dimension;
   if (m > exact::kMaxTangentDimension)
     throw io::InputError(o.manifold, 0, "intrinsic dimension " + std::to_string(m) + " is above the supported maximum " +
                                             std::to_string(exact::kMaxTangentDimension));
-  std::string points_text = io::read_file(o.points);
-  io::PointSet P = io::parse_points(points_text, o.points, io::PointReadOptions{N, true});
+  in.points_text = io::read_file(o.points);
+  io::PointsFile pf = io::parse_points_file(in.points_text, o.points, io::PointReadOptions{N, true});
+  in.points = std::move(pf.points);
+  in.point_lines = std::move(pf.lines);
+  const io::PointSet& P = in.points;
   if (P.size() < static_cast<std::size_t>(m + 2))
     throw io::InputError(o.points, 0, "only " + std::to_string(P.size()) + " points: a closed " + std::to_string(m) +
                                           "-manifold needs at least m + 2 = " + std::to_string(m + 2));
-  std::vector<long> lines = point_line_numbers(points_text);
-  std::optional<io::Complex> given;
-  std::string complex_text;
   if (!o.complex.empty()) {
-    complex_text = io::read_file(o.complex);
-    io::ComplexFile cf = io::parse_complex(complex_text, o.complex);
+    in.complex_text = io::read_file(o.complex);
+    io::ComplexFile cf = io::parse_complex(in.complex_text, o.complex);
     if (cf.complex.num_vertices != P.size())
-      throw io::InputError(o.complex, counts_line(complex_text),
+      throw io::InputError(o.complex, cf.counts_line,
                            "the complex has " + std::to_string(cf.complex.num_vertices) + " vertices but " + o.points +
                                " has " + std::to_string(P.size()) + " points; they must describe the same vertex set");
-    if (cf.embedded_points) {
-      auto clines = point_line_numbers(complex_text);
+    if (cf.embedded_points)
       for (std::size_t i = 0; i < P.size(); ++i)
         if (!std::equal(P.point(i).begin(), P.point(i).end(), cf.embedded_points->point(i).begin()))
-          throw io::InputError(o.complex, i < clines.size() ? clines[i] : 0,
+          throw io::InputError(o.complex, cf.embedded_point_lines[i],
                                "vertex " + std::to_string(i) + " differs from point " + std::to_string(i) + " of " +
                                    o.points + "; pass the same points to --points");
-    }
-    given = cf.complex;
+    in.given = std::move(cf.complex);
   }
-  io::Claims claims;
-  std::string claims_text;
   if (!o.claims.empty()) {
-    claims_text = io::read_file(o.claims);
-    claims = io::parse_claims(claims_text, o.claims);
+    in.claims_text = io::read_file(o.claims);
+    in.claims = io::parse_claims(in.claims_text, o.claims);
   }
-  C.inputs["manifold"] = {{"source", o.manifold}, {"name", spec.name}, {"sha256", Sha256::hex(spec_text)},
-                          {"intrinsic_dimension", m}, {"ambient_dimension", N}};
-  C.inputs["points"] = {{"path", o.points}, {"sha256", Sha256::hex(points_text)}, {"count", P.size()}};
-  C.inputs["complex"] = given ? json{{"path", o.complex}, {"sha256", Sha256::hex(complex_text)},
-                                     {"simplices", given->simplices.size()}}
-                              : json(nullptr);
-  C.inputs["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", Sha256::hex(claims_text)}};
-  C.conventions = {
+  return in;
+}
+
+// The certificate's "inputs": what was read, with the SHA-256 of the bytes parsed.
+json inputs_json(const Inputs& in, const CertifyOptions& o) {
+  json j;
+  j["manifold"] = {{"source", o.manifold}, {"name", in.spec.name}, {"sha256", Sha256::hex(in.spec_text)},
+                   {"intrinsic_dimension", in.spec.intrinsic_dimension}, {"ambient_dimension", in.spec.ambient_dimension}};
+  j["points"] = {{"path", o.points}, {"sha256", Sha256::hex(in.points_text)}, {"count", in.points.size()}};
+  j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", Sha256::hex(in.complex_text)},
+                                 {"simplices", in.given->simplices.size()}}
+                          : json(nullptr);
+  j["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", Sha256::hex(in.claims_text)}};
+  return j;
+}
+
+json conventions_json() {
+  return {
       {"coordinates", "every input double is the exact rational it represents"},
       {"tangent_space", "T_p = p + ker J_F(p) evaluated at p's exact coordinates, with an exact rational basis"},
       {"star", "s is in star(p) iff the ambient ball centred on T_p through the vertices of s contains no sample point "
@@ -191,85 +168,87 @@ Certificate run_certify(const CertifyOptions& o) {
       {"sparsity", "P is lambda-sparse iff every two points are at distance > lambda"},
       {"thickness", "Upsilon(t) = min_v D(v, t) / (j Delta(t)) for a j-simplex; gamma0-good: every j-face has Upsilon >= gamma0^j"},
       {"search", "every point within r of p is tested, with r >= 2.25 R_p(s) for every cell at p (a point in the ball is within 2R of p)"}};
+}
+
+json parameters_json(const Inputs& in) {
   json params = json::object();
+  const io::Claims& claims = in.claims;
   if (claims.eps) params["eps"] = rational_to_string(*claims.eps);
   if (claims.sparsity) params["sparsity"] = rational_to_string(*claims.sparsity);
   if (claims.gamma0) params["gamma0"] = rational_to_string(*claims.gamma0);
   if (claims.power_protection) params["power_protection"] = rational_to_string(*claims.power_protection);
-  C.parameters = {{"mode", given ? "verify the given complex" : "audit: compute Del_TM(P)"}, {"claims", params}};
+  return {{"mode", in.given ? "verify the given complex" : "audit: compute Del_TM(P)"}, {"claims", params}};
+}
 
-  // ---- Checks 1 and 2 ------------------------------------------------------------------------
-  Stopwatch watch;
-  C.checks.push_back(check_input_sanity(spec, P, lines, o.points, threads));
-  watch.record(C, "input_sanity");
-  exact::ImplicitSystem system(spec.equations, N);
-  PointGrid grid(P, m);
-  exact::FilterContext ctx0;
-  ctx0.force_exact = o.force_exact;
-  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx0);
-  watch.record(C, "sparsity");
+// ---- Stars (read by checks 3, 4, 6, 7 and 10) ------------------------------------------------
 
-  // ---- Stars (checks 3, 4, 6, 10) --------------------------------------------------------------
-  const std::size_t n = P.size();
-  StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.eps};
-  std::vector<std::vector<Simplex>> claimed(n);
-  std::vector<Simplex> wrong_dimension;
+struct Stars {
+  bool verify = false;                        // a complex was given (else: audit mode)
+  std::vector<std::vector<Simplex>> claimed;  // per point: the given m-simplices at it, sorted
+  std::vector<Simplex> wrong_dimension;       // given simplices of another dimension, sorted
+  std::vector<StarReport> reports;            // per point: star(p), exactly or why not
+  io::Complex complex;        // what the global checks look at: the given complex or the union of the stars
+  std::vector<Simplex> tops;  // its m-simplices, each sorted (given: in file order; audit: sorted, unique)
+};
+
+Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings& S, int threads,
+                    std::vector<exact::FilterContext>& ctx) {
+  const std::size_t n = S.points->size();
+  const int m = S.m;
+  Stars st;
+  st.verify = given.has_value();
+  st.claimed.resize(n);
   if (given)
     for (const auto& s0 : given->simplices) {
       Simplex s = s0;
       std::sort(s.begin(), s.end());
       if (static_cast<int>(s.size()) != m + 1) {
-        wrong_dimension.push_back(s);
+        st.wrong_dimension.push_back(s);
         continue;
       }
-      for (int v : s) claimed[v].push_back(s);
+      for (int v : s) st.claimed[v].push_back(s);
     }
-  std::vector<StarReport> reports(n);
-  std::vector<exact::FilterContext> ctx(threads);
-  for (auto& c : ctx) c.force_exact = o.force_exact;
+  st.reports.resize(n);
   parallel_for(n, threads, [&](std::size_t p, int w) {
-    reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed[p] : nullptr, ctx[w]);
+    st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &st.claimed[p] : nullptr, ctx[w]);
   });
-  watch.record(C, "stars");
-
-  // The complex the global checks look at: the given one, or the union of the computed stars.
-  io::Complex K;
-  K.num_vertices = n;
-  std::vector<Simplex> tops;  // its m-simplices, sorted and unique
+  st.complex.num_vertices = n;
   if (given) {
-    K = *given;
+    st.complex = *given;
     for (const auto& s0 : given->simplices)
       if (static_cast<int>(s0.size()) == m + 1) {
         Simplex s = s0;
         std::sort(s.begin(), s.end());
-        tops.push_back(s);
+        st.tops.push_back(s);
       }
   } else {
-    for (const auto& r : reports)
-      for (const auto& c : r.star) tops.push_back(c.simplex);
-    std::sort(tops.begin(), tops.end());
-    tops.erase(std::unique(tops.begin(), tops.end()), tops.end());
-    K.simplices = tops;
+    for (const auto& r : st.reports)
+      for (const auto& c : r.star) st.tops.push_back(c.simplex);
+    std::sort(st.tops.begin(), st.tops.end());
+    st.tops.erase(std::unique(st.tops.begin(), st.tops.end()), st.tops.end());
+    st.complex.simplices = st.tops;
   }
+  return st;
+}
 
-  // Check 3: the complex is Del_TM(P).
-  CheckEntry stars;
-  stars.id = 3;
-  stars.name = "stars";
+// Check 3: the complex is Del_TM(P).
+CheckEntry check_stars(const Stars& st, int m) {
+  CheckEntry stars(CheckId::stars);
+  const std::size_t n = st.reports.size();
   long undetermined = 0, missing = 0, extra = 0, verified = 0;
   json undetermined_examples = json::array();
-  for (const auto& s : wrong_dimension)
+  for (const auto& s : st.wrong_dimension)
     stars.add_witness({{"kind", "wrong_dimension"}, {"simplex", s}, {"dimension", s.size() - 1}, {"expected", m}}),
         stars.refute("a maximal simplex does not have dimension m");
-  for (const auto& r : reports) {
+  for (const auto& r : st.reports) {
     if (r.claimed_verified) ++verified;
     if (r.state != StarReport::State::proven) {
       ++undetermined;
       if (undetermined_examples.size() < 10) undetermined_examples.push_back({{"point", r.p}, {"reason", r.reason}});
       continue;
     }
-    if (!given || r.claimed_verified) continue;
-    std::set<Simplex> have(claimed[r.p].begin(), claimed[r.p].end());
+    if (!st.verify || r.claimed_verified) continue;
+    std::set<Simplex> have(st.claimed[r.p].begin(), st.claimed[r.p].end());
     for (const auto& c : r.star)
       if (!have.count(c.simplex)) {
         ++missing;
@@ -283,22 +262,18 @@ Certificate run_certify(const CertifyOptions& o) {
                                       "star(p); the complex does not contain it"}});
       }
   }
-  if (given) {
-    for (const auto& s : tops) {
-      bool yes = false, unknown = false;
-      for (int v : s) {
-        Member mv = member(reports[v], s);
-        yes = yes || mv == Member::yes;
-        unknown = unknown || mv == Member::unknown;
-      }
-      if (yes) continue;
-      if (unknown) {
+  if (st.verify) {
+    for (const auto& s : st.tops) {
+      Tri in_a_star = Tri::no;
+      for (int v : s) in_a_star = either(in_a_star, member(st.reports[v], s));
+      if (in_a_star == Tri::yes) continue;
+      if (in_a_star == Tri::unknown) {
         stars.undecide("some stars could not be determined exactly");
         continue;
       }
       ++extra;
       stars.refute("a simplex of the complex is in no star of its vertices");
-      const CellReport* c = find_cell(reports[s[0]].claimed, s);
+      const CellReport* c = find_cell(st.reports[s[0]].claimed, s);
       stars.add_witness(c ? not_in_star_witness(*c, s[0]) : json{{"kind", "not_in_star"}, {"simplex", s}});
     }
   }
@@ -306,38 +281,38 @@ Certificate run_certify(const CertifyOptions& o) {
   stars.details["points"] = n;
   stars.details["stars_undetermined"] = undetermined;
   stars.details["undetermined_examples"] = undetermined_examples;
-  if (given) {
+  if (st.verify) {
     stars.details["claimed_stars_verified"] = verified;
     stars.details["missing_simplices"] = missing;
     stars.details["extra_simplices"] = extra;
-    stars.details["wrong_dimension_simplices"] = wrong_dimension.size();
+    stars.details["wrong_dimension_simplices"] = st.wrong_dimension.size();
   }
-  stars.summary = given ? std::to_string(verified) + " of " + std::to_string(n) + " stars verified; " +
-                              std::to_string(missing) + " missing, " + std::to_string(extra) + " extra, " +
-                              std::to_string(wrong_dimension.size()) + " wrong-dimension simplices; " +
-                              std::to_string(undetermined) + " stars undetermined"
-                        : "star(p) computed exactly for " + std::to_string(n - undetermined) + " of " + std::to_string(n) +
-                              " points (" + std::to_string(tops.size()) + " m-simplices)";
+  stars.summary = st.verify ? std::to_string(verified) + " of " + std::to_string(n) + " stars verified; " +
+                                  std::to_string(missing) + " missing, " + std::to_string(extra) + " extra, " +
+                                  std::to_string(st.wrong_dimension.size()) + " wrong-dimension simplices; " +
+                                  std::to_string(undetermined) + " stars undetermined"
+                            : "star(p) computed exactly for " + std::to_string(n - undetermined) + " of " +
+                                  std::to_string(n) + " points (" + std::to_string(st.tops.size()) + " m-simplices)";
+  return stars;
+}
 
-  // Check 4: consistency.
-  CheckEntry cons;
-  cons.id = 4;
-  cons.name = "consistency";
+// Check 4: every m-simplex is in the star of each of its vertices. A simplex that the star
+// analyses did not test at a vertex is tested there (test_cell) to name the witness.
+CheckEntry check_consistency(const Stars& st, const StarSettings& S, exact::FilterContext& ctx) {
+  CheckEntry cons(CheckId::consistency);
   long inconsistent = 0;
-  exact::FilterContext ctx_w;
-  ctx_w.force_exact = o.force_exact;
-  for (const auto& s : tops) {
+  for (const auto& s : st.tops) {
     bool bad = false;
     for (int v : s) {
-      Member mv = member(reports[v], s);
-      if (mv == Member::unknown) cons.undecide("some stars could not be determined exactly");
-      if (mv != Member::no) continue;
+      const Tri mv = member(st.reports[v], s);
+      if (mv == Tri::unknown) cons.undecide("some stars could not be determined exactly");
+      if (mv != Tri::no) continue;
       if (!bad) ++inconsistent;
       bad = true;
       cons.refute("a simplex is not in the star of one of its vertices");
       if (cons.witnesses.size() < 20) {
-        const CellReport* c = find_cell(reports[v].claimed, s);
-        CellReport tested = c ? *c : test_cell(S, v, s, ctx_w);
+        const CellReport* c = find_cell(st.reports[v].claimed, s);
+        CellReport tested = c ? *c : test_cell(S, v, s, ctx);
         json w = not_in_star_witness(tested, v);
         if (tested.empty() && tested.tie < 0) w["kind"] = "not_in_star", w["detail"] = "empty ball but not a cell of star(v)";
         cons.add_witness(w);
@@ -346,28 +321,33 @@ Certificate run_certify(const CertifyOptions& o) {
       }
     }
   }
-  cons.details["m_simplices"] = tops.size();
+  cons.details["m_simplices"] = st.tops.size();
   cons.details["inconsistent_simplices"] = inconsistent;
-  cons.summary = std::to_string(tops.size() - inconsistent) + " of " + std::to_string(tops.size()) +
+  cons.summary = std::to_string(st.tops.size() - inconsistent) + " of " + std::to_string(st.tops.size()) +
                  " m-simplices are in the star of every vertex";
+  return cons;
+}
 
-  // Checks 6 and 10: protection and radius of the star simplices.
-  CheckEntry prot, radius;
-  prot.id = 6;
-  prot.name = "power_protection";
-  radius.id = 10;
-  radius.name = "star_radius";
-  exact::Interval min_margin{INFINITY, INFINITY}, max_r2{-INFINITY, -INFINITY};
-  json margin_at, radius_at;
-  long cells = 0, ties = 0, below_claim = 0, too_big = 0;
-  for (const auto& r : reports) {
+// Check 6: every star simplex power-protected (beyond the claim, when given); exact ties refuted.
+struct ProtectionResult {
+  CheckEntry entry{CheckId::power_protection};
+  long cells = 0;                                 // star cells seen (certified or not)
+  exact::Interval min_margin{INFINITY, INFINITY};  // over the certified cells
+};
+
+ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq_class>& claim) {
+  ProtectionResult R;
+  CheckEntry& prot = R.entry;
+  exact::Interval& min_margin = R.min_margin;
+  json margin_at;
+  long ties = 0, below_claim = 0;
+  for (const auto& r : st.reports) {
     if (r.state == StarReport::State::incomplete) {
       prot.undecide("some stars could not be determined");
-      radius.undecide("some stars could not be determined");
       continue;
     }
     for (const auto& c : r.star) {
-      ++cells;
+      ++R.cells;
       if (c.degenerate || c.conflict >= 0) {
         prot.undecide("a star cell could not be certified");
         continue;
@@ -388,64 +368,80 @@ Certificate run_certify(const CertifyOptions& o) {
       if (c.margin.lo < min_margin.lo) margin_at = {{"simplex", c.simplex}, {"at_vertex", r.p}, {"point", c.margin_point}};
       min_margin.lo = std::min(min_margin.lo, c.margin.lo);
       min_margin.hi = std::min(min_margin.hi, c.margin.hi);
+    }
+  }
+  if (R.cells) {
+    // What the verdict implies about the printed bound (the consistency guard, certificate.hpp).
+    prot.require_at_least("min_power_margin", min_margin.lo, 0);
+    if (claim) prot.require_at_least("min_power_margin", min_margin.lo, *claim);
+    prot.margin = {{"min_power_margin", lower_bound_json(min_margin)}, {"attained_near", margin_at}};
+  }
+  prot.details = {{"star_cells", R.cells}, {"exact_ties", ties}, {"below_claim", below_claim}};
+  if (claim)
+    prot.claim = {{"power_protection", rational_to_string(*claim)},
+                  {"meaning", "|c_p(s) - q|^2 - R_p(s)^2 > power_protection for every star simplex s at p and q not in s"}};
+  prot.summary = "min power margin >= " + num(min_margin.lo) + " (enclosure [" + num(min_margin.lo) + ", " +
+                 num(min_margin.hi) + "]) over " + std::to_string(R.cells) + " star cells; " + std::to_string(ties) +
+                 " exact ties" +
+                 (claim ? "; " + std::to_string(below_claim) + " not above the claim " + rational_to_string(*claim) : "");
+  return R;
+}
+
+// Check 10: every star simplex has R_p(s) < eps (the eps claim); without a claim, a report.
+struct RadiusResult {
+  CheckEntry entry{CheckId::star_radius};
+  long cells = 0;                                 // star cells seen (certified or not)
+  exact::Interval max_r2{-INFINITY, -INFINITY};   // of R_p(s)^2 over the certified cells
+};
+
+RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& eps) {
+  RadiusResult R;
+  CheckEntry& radius = R.entry;
+  exact::Interval& max_r2 = R.max_r2;
+  json radius_at;
+  long too_big = 0;
+  for (const auto& r : st.reports) {
+    if (r.state == StarReport::State::incomplete) {
+      radius.undecide("some stars could not be determined");
+      continue;
+    }
+    for (const auto& c : r.star) {
+      ++R.cells;
+      if (c.degenerate || c.conflict >= 0) continue;  // not a cell: check 6 is undecided
       if (c.radius2.hi > max_r2.hi) radius_at = {{"simplex", c.simplex}, {"at_vertex", r.p}};
       max_r2.lo = std::max(max_r2.lo, c.radius2.lo);
       max_r2.hi = std::max(max_r2.hi, c.radius2.hi);
-      if (claims.eps && c.eps_sign >= 0) {
+      if (eps && c.eps_sign >= 0) {
         ++too_big;
         radius.refute("a star simplex has R_p(s) >= eps");
         radius.add_witness({{"kind", "radius_not_below_eps"}, {"simplex", c.simplex}, {"at_vertex", r.p},
-                            {"radius_squared", enclosure_json(c.radius2)}, {"eps_squared", rational_json(*claims.eps * *claims.eps)},
+                            {"radius_squared", enclosure_json(c.radius2)}, {"eps_squared", rational_json(*eps * *eps)},
                             {"exact_sign", c.eps_sign}});
       }
     }
   }
-  if (cells) {
-    // What the verdicts imply about the printed bounds (the consistency guard, certificate.hpp).
-    prot.require_at_least("min_power_margin", min_margin.lo, 0);
-    if (claims.power_protection) prot.require_at_least("min_power_margin", min_margin.lo, *claims.power_protection);
-    if (claims.eps) radius.require_at_most("max_radius_squared", max_r2.hi, *claims.eps * *claims.eps);
-    prot.margin = {{"min_power_margin", lower_bound_json(min_margin)}, {"attained_near", margin_at}};
+  if (R.cells) {
+    // What the verdict implies about the printed bound (the consistency guard, certificate.hpp).
+    if (eps) radius.require_at_most("max_radius_squared", max_r2.hi, *eps * *eps);
     radius.margin = {{"max_radius_squared", {{"certified_upper_bound", num(max_r2.hi)}, {"enclosure", enclosure_json(max_r2)}}},
                      {"attained_at", radius_at}};
   }
-  prot.details = {{"star_cells", cells}, {"exact_ties", ties}, {"below_claim", below_claim}};
-  radius.details = {{"star_cells", cells}, {"not_below_eps", too_big}};
-  if (claims.power_protection)
-    prot.claim = {{"power_protection", rational_to_string(*claims.power_protection)},
-                  {"meaning", "|c_p(s) - q|^2 - R_p(s)^2 > power_protection for every star simplex s at p and q not in s"}};
-  prot.summary = "min power margin >= " + num(min_margin.lo) + " (enclosure [" + num(min_margin.lo) + ", " + num(min_margin.hi) +
-                 "]) over " + std::to_string(cells) + " star cells; " + std::to_string(ties) + " exact ties" +
-                 (claims.power_protection ? "; " + std::to_string(below_claim) + " not above the claim " +
-                                                rational_to_string(*claims.power_protection)
-                                          : "");
-  if (claims.eps) {
-    radius.claim = {{"eps", rational_to_string(*claims.eps)}, {"meaning", "R_p(s) < eps for every star simplex"}};
+  radius.details = {{"star_cells", R.cells}, {"not_below_eps", too_big}};
+  if (eps) {
+    radius.claim = {{"eps", rational_to_string(*eps)}, {"meaning", "R_p(s) < eps for every star simplex"}};
   } else if (radius.verdict == Verdict::certified) {
     radius.verdict = Verdict::report;
   }
   radius.summary = "max R_p(s)^2 <= " + num(max_r2.hi) +
-                   (claims.eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= eps = " + rational_to_string(*claims.eps)
-                               : " (no eps claim)");
+                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= eps = " + rational_to_string(*eps)
+                        : " (no eps claim)");
+  return R;
+}
 
-  watch.record(C, "assemble_checks_3_4_6_10");
-
-  // Check 5: thickness.
-  // One face lattice for checks 5 and 8.
-  // Simplices with more than m + 1 vertices are refuted by check 3 (wrong dimension, with the
-  // simplex as witness); their 2^n faces are never enumerated (a 32-vertex simplex would hang).
-  std::vector<Simplex> lattice_simplices;
-  for (const auto& s : K.simplices)
-    if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
-  const FaceLattice lattice = face_lattice(lattice_simplices);
-  ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
-                                         o.force_exact);
-  watch.record(C, "thickness");
-
-  // Check 8: topology.
-  CheckEntry topo;
-  topo.id = 8;
-  topo.name = "topology";
+// Check 8: the complex is a closed pseudomanifold with sphere links, and the topology the spec
+// expects.
+CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattice, const io::ExpectedTopology& expect) {
+  CheckEntry topo(CheckId::topology);
   TopologyReport T = analyse_topology(K, m, &lattice);
   if (!T.pure) topo.refute("not pure"), topo.add_witness({{"kind", "not_pure"}, {"simplex", T.impure_example}});
   if (T.boundary_ridges || T.singular_ridges) {
@@ -458,20 +454,20 @@ Certificate run_certify(const CertifyOptions& o) {
     topo.add_witness({{"kind", "vertex_link"}, {"vertex", T.bad_link_example}, {"reason", T.bad_link_reason}});
   }
   if (T.unknown_links) topo.undecide("vertex links not recognised as spheres: " + T.bad_link_reason);
-  if (spec.expected.euler_characteristic && !T.f.empty() && *spec.expected.euler_characteristic != T.euler)
+  if (expect.euler_characteristic && !T.f.empty() && *expect.euler_characteristic != T.euler)
     topo.refute("Euler characteristic differs from the spec's expected value");
-  if (!spec.expected.betti_z2.empty() && spec.expected.betti_z2 != T.betti_z2)
+  if (!expect.betti_z2.empty() && expect.betti_z2 != T.betti_z2)
     topo.refute("Betti numbers over Z/2 differ from the spec's expected values");
-  if (!spec.expected.betti_z3.empty() && spec.expected.betti_z3 != T.betti_z3)
+  if (!expect.betti_z3.empty() && expect.betti_z3 != T.betti_z3)
     topo.refute("Betti numbers over Z/3 differ from the spec's expected values");
   topo.details = {{"pure", T.pure}, {"boundary_ridges", T.boundary_ridges}, {"singular_ridges", T.singular_ridges},
                   {"strongly_connected_components", T.strong_components}, {"uncovered_vertices", T.uncovered_vertices},
                   {"links_not_spheres", T.bad_links}, {"links_unrecognised", T.unknown_links}, {"face_counts", T.f},
                   {"euler_characteristic", T.euler}, {"betti_z2", T.betti_z2}, {"betti_z3", T.betti_z3}};
   json expected = json::object();
-  if (spec.expected.euler_characteristic) expected["euler_characteristic"] = *spec.expected.euler_characteristic;
-  if (!spec.expected.betti_z2.empty()) expected["betti_z2"] = spec.expected.betti_z2;
-  if (!spec.expected.betti_z3.empty()) expected["betti_z3"] = spec.expected.betti_z3;
+  if (expect.euler_characteristic) expected["euler_characteristic"] = *expect.euler_characteristic;
+  if (!expect.betti_z2.empty()) expected["betti_z2"] = expect.betti_z2;
+  if (!expect.betti_z3.empty()) expected["betti_z3"] = expect.betti_z3;
   topo.claim = expected.empty() ? json(nullptr) : expected;
   auto vec = [](const std::vector<long>& v) {
     std::string s = "(";
@@ -480,64 +476,128 @@ Certificate run_certify(const CertifyOptions& o) {
   };
   topo.summary = "chi = " + std::to_string(T.euler) + ", Betti Z/2 " + vec(T.betti_z2) + ", Z/3 " + vec(T.betti_z3) +
                  (expected.empty() ? " (no expected values in the spec)" : "");
+  return topo;
+}
+
+// Check 7 (a report): which star simplices are secure (paper Definition 3.1), with the
+// parameters that check 9 derives from the measured values.
+CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
+                                  int threads, std::vector<exact::FilterContext>& ctx) {
+  CheckEntry secure(CheckId::secure_simplices);
+  secure.verdict = Verdict::report;
+  if (!tp.usable) {
+    secure.summary = "not evaluated: " + tp.why;
+    return secure;
+  }
+  const std::size_t n = reports.size();
+  SecureParams sp{tp.eps, tp.delta, tp.upsilon0, tp.shortest, {}, {}, {}, {}};
+  sp.prepare();
+  std::vector<SecureReport> sr(n);
+  parallel_for(n, threads, [&](std::size_t p, int w) {
+    if (reports[p].state != StarReport::State::proven) return;
+    std::vector<Simplex> st;
+    for (const auto& c : reports[p].star) st.push_back(c.simplex);
+    sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
+  });
+  long ok = 0, bad = 0, fallbacks = 0, skipped = 0;
+  std::map<std::string, long> reasons;
+  for (std::size_t p = 0; p < n; ++p) {
+    ok += sr[p].secure, bad += sr[p].insecure, fallbacks += sr[p].exact_fallbacks, skipped += sr[p].undecided;
+    for (const auto& [s, why] : sr[p].failures) {
+      std::string key = why.substr(0, why.find(" ("));
+      ++reasons[key];
+      if (secure.witnesses.size() < 20) secure.add_witness({{"simplex", s}, {"at_vertex", p}, {"failed", why}});
+    }
+  }
+  secure.details = {{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
+                    {"first_failed_condition_counts", reasons}, {"exact_fallbacks", fallbacks},
+                    {"not_evaluated", skipped},
+                    {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}};
+  secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1)" +
+                   (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 4000 points within 5 eps)" : "");
+  return secure;
+}
+
+}  // namespace
+
+Certificate run_certify(const CertifyOptions& o) {
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  const std::clock_t cpu_start = std::clock();
+  Certificate C;
+  const int threads = std::max(1, o.threads);
+
+  const Inputs in = read_inputs(o);
+  const io::ManifoldSpec& spec = in.spec;
+  const io::PointSet& P = in.points;
+  const io::Claims& claims = in.claims;
+  const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
+  C.inputs = inputs_json(in, o);
+  C.conventions = conventions_json();
+  C.parameters = parameters_json(in);
+
+  // Every filtered predicate records its statistics in a context: one per worker thread (checks
+  // 3, 6, 7 and 10), one for check 2 and one for the cells that check 4 tests.
+  std::vector<exact::FilterContext> ctx(threads);
+  exact::FilterContext ctx_sparsity, ctx_consistency;
+  for (auto& c : ctx) c.force_exact = o.force_exact;
+  ctx_sparsity.force_exact = ctx_consistency.force_exact = o.force_exact;
+
+  Stopwatch watch;
+  C.checks.push_back(check_input_sanity(spec, P, in.point_lines, o.points, threads));
+  watch.record(C, "input_sanity");
+  const exact::ImplicitSystem system(spec.equations, N);
+  const PointGrid grid(P, m);
+  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
+  watch.record(C, "sparsity");
+
+  const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.eps};
+  const Stars stars = analyse_stars(in.given, S, threads, ctx);
+  watch.record(C, "stars");
+  CheckEntry stars_entry = check_stars(stars, m);
+  CheckEntry consistency = check_consistency(stars, S, ctx_consistency);
+  ProtectionResult protection = check_power_protection(stars, claims.power_protection);
+  RadiusResult radius = check_star_radius(stars, claims.eps);
+  watch.record(C, "assemble_checks_3_4_6_10");
+
+  // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by
+  // check 3 (wrong dimension, with the simplex as witness); their 2^n faces are never enumerated
+  // (a 32-vertex simplex would hang).
+  std::vector<Simplex> lattice_simplices;
+  for (const auto& s : stars.complex.simplices)
+    if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
+  const FaceLattice lattice = face_lattice(lattice_simplices);
+  ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
+                                         o.force_exact);
+  watch.record(C, "thickness");
+
+  CheckEntry topology = check_topology(stars.complex, m, lattice, spec.expected);
   watch.record(C, "topology");
 
   // Checks 7 and 9: the paper's hypotheses, measured.
   Measured meas;
   meas.min_distance = sqrt_lower(sparsity.min_squared);
   meas.min_thickness = thick.min_top.lo;
-  meas.min_margin = cells ? min_margin.lo : -INFINITY;
-  meas.max_radius_squared = cells ? max_r2.hi : INFINITY;
-  meas.eps = claims.eps && radius.verdict == Verdict::certified ? std::optional<mpq_class>(*claims.eps) : std::nullopt;
-  TheoremParams tp = theorem_parameters(meas, spec);
-  CheckEntry secure;
-  secure.id = 7;
-  secure.name = "secure_simplices";
-  secure.verdict = Verdict::report;
-  if (!tp.usable) {
-    secure.summary = "not evaluated: " + tp.why;
-  } else {
-    SecureParams sp{tp.eps, tp.delta, tp.upsilon0, tp.shortest, {}, {}, {}, {}};
-    sp.prepare();
-    std::vector<SecureReport> sr(n);
-    parallel_for(n, threads, [&](std::size_t p, int w) {
-      if (reports[p].state != StarReport::State::proven) return;
-      std::vector<Simplex> st;
-      for (const auto& c : reports[p].star) st.push_back(c.simplex);
-      sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
-    });
-    long ok = 0, bad = 0, fallbacks = 0, skipped = 0;
-    std::map<std::string, long> reasons;
-    for (std::size_t p = 0; p < n; ++p) {
-      ok += sr[p].secure, bad += sr[p].insecure, fallbacks += sr[p].exact_fallbacks, skipped += sr[p].undecided;
-      for (const auto& [s, why] : sr[p].failures) {
-        std::string key = why.substr(0, why.find(" ("));
-        ++reasons[key];
-        if (secure.witnesses.size() < 20) secure.add_witness({{"simplex", s}, {"at_vertex", p}, {"failed", why}});
-      }
-    }
-    secure.details = {{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
-                      {"first_failed_condition_counts", reasons}, {"exact_fallbacks", fallbacks},
-                      {"not_evaluated", skipped},
-                      {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}};
-    secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1)" +
-                     (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 4000 points within 5 eps)" : "");
-  }
-  CheckEntry theorem = theorem_report(meas, tp, spec);
+  meas.min_margin = protection.cells ? protection.min_margin.lo : -INFINITY;
+  meas.max_radius_squared = radius.cells ? radius.max_r2.hi : INFINITY;
+  meas.eps = claims.eps && radius.entry.verdict == Verdict::certified ? std::optional<mpq_class>(*claims.eps) : std::nullopt;
+  const TheoremParams tp = theorem_parameters(meas);
+  CheckEntry secure = check_secure_simplices(tp, S, stars.reports, threads, ctx);
+  CheckEntry theorem = theorem_report(tp, spec);
   watch.record(C, "secure_and_theorem");
 
   for (auto& c : ctx) C.filter.merge(c.stats);
-  C.filter.merge(ctx0.stats);
-  C.filter.merge(ctx_w.stats);
-  C.checks.push_back(sparsity.entry);
-  C.checks.push_back(stars);
-  C.checks.push_back(cons);
-  C.checks.push_back(thick.entry);
-  C.checks.push_back(prot);
-  C.checks.push_back(secure);
-  C.checks.push_back(topo);
-  C.checks.push_back(theorem);
-  C.checks.push_back(radius);
+  C.filter.merge(ctx_sparsity.stats);
+  C.filter.merge(ctx_consistency.stats);
+  C.checks.push_back(std::move(sparsity.entry));
+  C.checks.push_back(std::move(stars_entry));
+  C.checks.push_back(std::move(consistency));
+  C.checks.push_back(std::move(thick.entry));
+  C.checks.push_back(std::move(protection.entry));
+  C.checks.push_back(std::move(secure));
+  C.checks.push_back(std::move(topology));
+  C.checks.push_back(std::move(theorem));
+  C.checks.push_back(std::move(radius.entry));
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error

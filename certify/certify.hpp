@@ -1,4 +1,5 @@
-// delcert-certify's driver: reads the inputs, runs checks 1-10 and assembles the certificate.
+// delcert-certify's driver: reads each input once, runs checks 1-10 (one function each; their
+// numbers and names are CheckId in certificate.hpp) and assembles the certificate.
 //
 //   1 input_sanity       points near M (exact residuals, certified distance), right component, full-rank Jacobian
 //   2 sparsity           exact minimum distance and its pair; the sparsity claim
@@ -33,9 +34,5 @@ struct CertifyOptions {
 
 // Throws io::InputError on bad input (exit status 2); never writes anything.
 Certificate run_certify(const CertifyOptions& options);
-
-// The error's message, with the line added when the reader named a JSON field but no line
-// (spec and claims errors read "FILE: field 'a.b': ..."; the line of "b" is looked up in FILE).
-std::string with_line(const io::InputError& error);
 
 }  // namespace delcert::certify

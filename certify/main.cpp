@@ -58,14 +58,14 @@ int main(int argc, char** argv) {
     certify::Certificate cert = certify::run_certify(o);
     if (!out.empty()) io::write_file_atomically(out, cert.to_text(!no_times));
     for (const auto& c : cert.checks)
-      std::printf("check %-2d %-22s %-10s %s\n", c.id, c.name.c_str(), certify::to_string(c.verdict), c.summary.c_str());
+      std::printf("check %-2d %-22s %-10s %s\n", c.number(), c.name(), certify::to_string(c.verdict), c.summary.c_str());
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
     certify::Verdict v = cert.overall();
     std::printf("verdict: %s\n", certify::to_string(v));
     std::fflush(stdout);
     return v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;
   } catch (const io::InputError& e) {
-    std::cerr << "delcert-certify: " << certify::with_line(e) << "\n";
+    std::cerr << "delcert-certify: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     // Not bad input: an internal failure. Nothing was certified.

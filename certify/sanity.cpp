@@ -3,7 +3,6 @@
 #include <mpfr.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -17,43 +16,6 @@
 namespace delcert::certify {
 
 using nlohmann::json;
-
-std::vector<long> point_line_numbers(const std::string& text) {
-  // The same line rules as the readers: '#' starts a comment, blank lines are skipped.
-  std::vector<long> data;  // line numbers of non-empty lines
-  std::vector<std::size_t> tokens;
-  long number = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    ++number;
-    std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-      if (i < line.size()) ++count;
-      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    }
-    if (count) data.push_back(number), tokens.push_back(count);
-  }
-  // Header lines before the first point: "delcert-points v1" + "DIM COUNT"; "OFF" [+ counts on
-  // the same line or the next]; "nOFF" + dimension + counts (possibly sharing lines).
-  std::size_t first = 0;
-  if (!data.empty()) {
-    std::string tag = text.substr(text.find_first_not_of(" \t\r\n"), 4);
-    if (tag.rfind("nOFF", 0) == 0) {
-      std::size_t need = 4, have = 0;  // tag, dim, NV, NF
-      while (first < data.size() && have < need) have += tokens[first++];
-    } else if (tag.rfind("OFF", 0) == 0) {
-      first = tokens[0] > 1 ? 1 : 2;
-    } else {
-      first = 2;
-    }
-  }
-  return {data.begin() + static_cast<long>(std::min(first, data.size())), data.end()};
-}
 
 namespace {
 
@@ -154,9 +116,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                                "too far from M; fix the spec or project the point onto M");
     distance[idx] = d.distance_upper;
   });
-  CheckEntry e;
-  e.id = 1;
-  e.name = "input_sanity";
+  CheckEntry e(CheckId::input_sanity);
   std::size_t arg = 0;
   for (std::size_t i = 1; i < n; ++i)
     if (worst[i] > worst[arg]) arg = i;
@@ -191,8 +151,6 @@ SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid,
                               exact::FilterContext& ctx) {
   SparsityResult R;
   CheckEntry& e = R.entry;
-  e.id = 2;
-  e.name = "sparsity";
   const std::size_t n = points.size();
   const int N = points.dimension;
   if (n < 2) {

@@ -23,19 +23,17 @@ namespace delcert::certify {
 
 class PointGrid;
 
-// Line number (1-based) of every point in the text of a points file, for error messages.
-std::vector<long> point_line_numbers(const std::string& points_text);
-
-// Throws io::InputError naming the points file and the point's line for a point off M (beyond
-// the tolerance), on the wrong component, where the Jacobian is rank-deficient, or where no
-// point of M can be certified nearby (never a verdict: bad input, exit status 2).
+// Throws io::InputError naming the points file and the point's line (lines[i], from
+// io::parse_points_file; no line for i >= lines.size()) for a point off M (beyond the
+// tolerance), on the wrong component, where the Jacobian is rank-deficient, or where no point of
+// M can be certified nearby (never a verdict: bad input, exit status 2).
 CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
                               const std::string& points_file, int threads);
 
 // Check 2: the exact minimum squared distance and the pair realising it (smallest indices among
 // ties), compared with the claimed sparsity (distance > claim) when given.
 struct SparsityResult {
-  CheckEntry entry;
+  CheckEntry entry{CheckId::sparsity};
   mpq_class min_squared;  // exact
   int i = -1, j = -1;
 };

@@ -38,7 +38,7 @@ json TheoremParams::json_parameters() const {
           {"mu0_eps", enc(exact::Enclosure(shortest))}};
 }
 
-TheoremParams theorem_parameters(const Measured& M, const io::ManifoldSpec&) {
+TheoremParams theorem_parameters(const Measured& M) {
   TheoremParams T;
   if (!(M.min_distance > 0)) T.why = "no positive lower bound on the minimum distance";
   else if (!(M.min_thickness > 0)) T.why = "no positive lower bound on the thickness of the m-simplices";
@@ -63,11 +63,8 @@ TheoremParams theorem_parameters(const Measured& M, const io::ManifoldSpec&) {
   return T;
 }
 
-CheckEntry theorem_report(const Measured& M, const TheoremParams& T, const io::ManifoldSpec& spec) {
-  (void)M;
-  CheckEntry e;
-  e.id = 9;
-  e.name = "theorem";
+CheckEntry theorem_report(const TheoremParams& T, const io::ManifoldSpec& spec) {
+  CheckEntry e(CheckId::theorem);
   e.verdict = Verdict::report;
   if (!spec.reach) {
     e.summary = "undetermined: the manifold spec gives no reach";

@@ -45,7 +45,7 @@ struct TheoremParams {
   nlohmann::json json_parameters() const;
 };
 
-TheoremParams theorem_parameters(const Measured& measured, const io::ManifoldSpec& spec);
-CheckEntry theorem_report(const Measured& measured, const TheoremParams& params, const io::ManifoldSpec& spec);
+TheoremParams theorem_parameters(const Measured& measured);
+CheckEntry theorem_report(const TheoremParams& params, const io::ManifoldSpec& spec);
 
 }  // namespace delcert::certify

@@ -80,17 +80,10 @@ std::vector<const double*> vertex_pointers(const io::PointSet& P, const int* v, 
 
 }  // namespace
 
-ThicknessResult check_thickness(const io::PointSet& P, const io::Complex& K, int m, const mpq_class* gamma0, int threads,
-                                exact::FilterStats& stats, bool force_exact) {
-  return check_thickness(P, face_lattice(K.simplices), m, gamma0, threads, stats, force_exact);
-}
-
 ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int m, const mpq_class* gamma0, int threads,
                                 exact::FilterStats& stats, bool force_exact) {
   ThicknessResult R;
   CheckEntry& e = R.entry;
-  e.id = 5;
-  e.name = "thickness";
   const int N = P.dimension;
   std::vector<exact::FilterContext> ctx(std::max(1, threads));
   for (auto& c : ctx) c.force_exact = force_exact;

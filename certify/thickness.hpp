@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "certify/certificate.hpp"
-#include "io/complex.hpp"
 #include "io/points.hpp"
 
 namespace delcert::certify {
@@ -16,15 +15,13 @@ namespace delcert::certify {
 struct FaceLattice;
 
 struct ThicknessResult {
-  CheckEntry entry;
+  CheckEntry entry{CheckId::thickness};
   // Certified enclosure of min Upsilon over the m-simplices (for the theorem report); lo = -1
   // when there is no m-simplex.
   exact::Interval min_top{-1, -1};
 };
 
-ThicknessResult check_thickness(const io::PointSet& points, const io::Complex& complex, int m, const mpq_class* gamma0,
-                                int threads, exact::FilterStats& stats, bool force_exact = false);
-// The same with the complex's face lattice already built (face_lattice(complex.simplices)).
+// `lattice`: the faces of the complex (face_lattice of its simplices).
 ThicknessResult check_thickness(const io::PointSet& points, const FaceLattice& lattice, int m, const mpq_class* gamma0,
                                 int threads, exact::FilterStats& stats, bool force_exact = false);
 

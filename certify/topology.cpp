@@ -355,7 +355,6 @@ Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string
   for (const auto& s : simplices)
     for (std::size_t i = 1; i < s.size(); ++i) comps -= uf.unite(local(s[0]), local(s[i]));
   if (comps != 1) return fail(std::to_string(comps) + " connected components");
-  Tri result = Tri::yes;
   if (d == 2) {  // vertex links of a closed pseudo-surface are unions of cycles: check each is one cycle
     std::vector<std::vector<int>> around(verts.size());  // triangles at each vertex
     for (std::size_t j = 0; j < simplices.size(); ++j)
@@ -386,7 +385,7 @@ Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string
     }
     long chi = static_cast<long>(verts.size()) - distinct_ridges + static_cast<long>(simplices.size());
     if (chi != 2) return fail("Euler characteristic " + std::to_string(chi) + ", a sphere has 2");
-    return result;
+    return Tri::yes;
   }
   for (int v : verts) {
     std::vector<std::vector<int>> link;
@@ -398,14 +397,10 @@ Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string
         link.push_back(t);
       }
     std::string w;
-    Tri r = is_sphere(link, d - 1, &w);
-    if (r == Tri::no) return fail("the link of vertex " + std::to_string(v) + " is not a sphere: " + w);
-    if (r == Tri::unknown) result = Tri::unknown;
-  }
-  if (d == 2) {  // a closed connected surface with chi = V - E + F = 2 is a sphere
-    long chi = static_cast<long>(verts.size()) - distinct_ridges + static_cast<long>(simplices.size());
-    if (chi != 2) return fail("Euler characteristic " + std::to_string(chi) + ", a sphere has 2");
-    return result;
+    // Here d >= 3, where the answer is at best `unknown` (below): only a link proven not to be a
+    // sphere changes it.
+    if (is_sphere(link, d - 1, &w) == Tri::no)
+      return fail("the link of vertex " + std::to_string(v) + " is not a sphere: " + w);
   }
   FaceLattice L = face_lattice(simplices);
   long chi = 0;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/tri.hpp"
 #include "io/complex.hpp"
 
 namespace delcert::certify {
@@ -37,7 +38,7 @@ std::vector<long> boundary_ranks(const FaceLattice& lattice, int p);
 // Betti numbers b_0..b_dim over Z/p.
 std::vector<long> betti_numbers(const FaceLattice& lattice, int p);
 
-enum class Tri { no, yes, unknown };
+using exact::Tri;
 
 // Is the (pure, d-dimensional) complex given by its maximal simplices a triangulated d-sphere?
 // Decided for d <= 2 (d = 0: two points; d = 1: one cycle; d = 2: connected closed surface, every

@@ -65,6 +65,7 @@ ComplexFile parse_complex(const std::string& text, const std::string& file) {
     if (lines.size() < 2 || lines[1].tokens.size() != 2)
       throw InputError(file, lines.size() < 2 ? head.number : lines[1].number,
                        "expected a line 'NUM_VERTICES NUM_SIMPLICES'");
+    out.counts_line = lines[1].number;
     long nv = parse_count(lines[1].tokens[0], file, lines[1].number, "the vertex count");
     long ns = parse_count(lines[1].tokens[1], file, lines[1].number, "the simplex count");
     // Vertex indices are ints everywhere downstream: a larger count would let an index wrap.
@@ -82,12 +83,13 @@ ComplexFile parse_complex(const std::string& text, const std::string& file) {
       line_of.push_back(lines[i].number);
     }
   } else if (tag == "OFF") {
-    PointSet ps = parse_points(text, file, PointReadOptions{3, true});
-    std::size_t nv = ps.size();
+    PointsFile pf = parse_points_file(text, file, PointReadOptions{3, true});
+    std::size_t nv = pf.points.size();
     // The counts line is the first line after "OFF" (or on the same line).
     std::size_t counts_idx = head.tokens.size() > 1 ? 0 : 1;
     const auto& ct = lines[counts_idx].tokens;
     std::size_t off = counts_idx == 0 ? 1 : 0;
+    out.counts_line = lines[counts_idx].number;
     long nf = parse_count(ct[off + 1], file, lines[counts_idx].number, "the face count");
     std::size_t first_face = counts_idx + 1 + nv;
     if (static_cast<long>(lines.size() - first_face) != nf)
@@ -105,7 +107,8 @@ ComplexFile parse_complex(const std::string& text, const std::string& file) {
       out.complex.simplices.push_back(parse_simplex(idx, 0, nv, file, lines[i].number));
       line_of.push_back(lines[i].number);
     }
-    out.embedded_points = std::move(ps);
+    out.embedded_points = std::move(pf.points);
+    out.embedded_point_lines = std::move(pf.lines);
   } else {
     throw InputError(file, head.number, "unknown complex format '" + tag + "'; expected 'delcert-complex v1' or 'OFF'");
   }

@@ -29,6 +29,10 @@ struct Complex {
 struct ComplexFile {
   Complex complex;
   std::optional<PointSet> embedded_points;  // the vertices, when the file carries them (OFF)
+  // Lines in the file, for messages: of the header line that gives the vertex count, and of
+  // each embedded point (empty without embedded points).
+  long counts_line = 0;
+  std::vector<long> embedded_point_lines;
 };
 
 // Throws InputError("file:line: ...") on malformed counts, out-of-range or repeated indices,

@@ -59,12 +59,13 @@ void check_duplicates(const PointSet& ps, const std::vector<long>& line_of_point
 
 }  // namespace
 
-PointSet parse_points(const std::string& text, const std::string& file, const PointReadOptions& options) {
+PointsFile parse_points_file(const std::string& text, const std::string& file, const PointReadOptions& options) {
   auto lines = detail::split_lines(text);
   if (lines.empty()) throw InputError(file, 0, "empty file; expected a 'delcert-points v1', 'OFF' or 'nOFF' header");
   const Line& head = lines[0];
-  PointSet ps;
-  std::vector<long> line_of_point;
+  PointsFile out;
+  PointSet& ps = out.points;
+  std::vector<long>& line_of_point = out.lines;
   std::string tag(head.tokens[0]);
   if (tag == "delcert-points") {
     if (head.tokens.size() != 2 || head.tokens[1] != "v1")
@@ -115,7 +116,11 @@ PointSet parse_points(const std::string& text, const std::string& file, const Po
                      "points are in dimension " + std::to_string(ps.dimension) + " but the manifold lives in R^" +
                          std::to_string(options.expected_dimension));
   if (options.reject_duplicates) check_duplicates(ps, line_of_point, file);
-  return ps;
+  return out;
+}
+
+PointSet parse_points(const std::string& text, const std::string& file, const PointReadOptions& options) {
+  return parse_points_file(text, file, options).points;
 }
 
 PointSet read_points(const std::string& path, const PointReadOptions& options) {

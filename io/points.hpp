@@ -31,10 +31,17 @@ struct PointReadOptions {
   bool reject_duplicates = true;  // two bit-identical points are an error
 };
 
+// A points file as read: the points and, for messages about a point, the line it is on.
+struct PointsFile {
+  PointSet points;
+  std::vector<long> lines;  // lines[i]: the 1-based line of point i in the file
+};
+
 // Throws InputError("file:line: ...") on anything malformed: unknown tag or version, bad counts,
 // malformed/NaN/infinite numbers, wrong dimension, duplicate points.
 PointSet read_points(const std::string& path, const PointReadOptions& options = {});
 PointSet parse_points(const std::string& text, const std::string& name, const PointReadOptions& options = {});
+PointsFile parse_points_file(const std::string& text, const std::string& name, const PointReadOptions& options = {});
 
 enum class PointFormat { delcert, off, noff };
 

@@ -11,9 +11,7 @@ std::string q(const std::string& s) { return "'" + s + "'"; }
 
 TEST(ConsistencyGuard, CertifiedCheckWithContradictingMarginFails) {
   Certificate C;
-  CheckEntry e;
-  e.id = 6;
-  e.name = "power_protection";
+  CheckEntry e(CheckId::power_protection);
   e.require_at_least("min_power_margin", -4.32, 0);  // the false CERTIFIED of the overflow case
   C.checks.push_back(e);
   const auto failures = C.self_check_failures();
@@ -23,7 +21,7 @@ TEST(ConsistencyGuard, CertifiedCheckWithContradictingMarginFails) {
 }
 
 TEST(ConsistencyGuard, ComparesWithTheEnclosureOfTheExactRequirement) {
-  CheckEntry e;
+  CheckEntry e(CheckId::power_protection);
   e.verdict = Verdict::certified;
   // 1/3 is not a double: a certified lower bound equal to the double just below 1/3 meets
   // "at least 1/3" as far as doubles can show, one ulp lower does not.
@@ -44,7 +42,7 @@ TEST(ConsistencyGuard, ComparesWithTheEnclosureOfTheExactRequirement) {
 
 TEST(ConsistencyGuard, OnlyCertifiedChecksAreHeldToTheirRequirements) {
   for (Verdict v : {Verdict::refuted, Verdict::undecided, Verdict::report}) {
-    CheckEntry e;
+    CheckEntry e(CheckId::power_protection);
     e.verdict = v;
     e.require_at_least("min_power_margin", -4.32, 0);
     Certificate C;

@@ -35,11 +35,11 @@ Certificate certify(const TempDir& dir, const std::string& spec, const io::Point
 // thinnest face.
 std::string claims_from(const Certificate& c) {
   auto D = [](const nlohmann::json& s) { return std::stod(s.get<std::string>()); };
-  double r2 = D(check(c, 10).margin["max_radius_squared"]["certified_upper_bound"]);
-  double d = D(check(c, 2).margin["min_distance"]["certified_lower_bound"]);
-  double prot = D(check(c, 6).margin["min_power_margin"]["certified_lower_bound"]);
+  double r2 = D(check(c, CheckId::star_radius).margin["max_radius_squared"]["certified_upper_bound"]);
+  double d = D(check(c, CheckId::sparsity).margin["min_distance"]["certified_lower_bound"]);
+  double prot = D(check(c, CheckId::power_protection).margin["min_power_margin"]["certified_lower_bound"]);
   double thin = 1;
-  for (const auto& [j, v] : check(c, 5).margin.items()) {
+  for (const auto& [j, v] : check(c, CheckId::thickness).margin.items()) {
     double u = D(v["min_thickness"]["certified_lower_bound"]);
     thin = std::min(thin, std::pow(u, 1.0 / std::stoi(j)));  // Upsilon >= gamma0^j
   }
@@ -75,9 +75,11 @@ TEST(Certify, TangentialComplexesOfWellSpreadSamplesCertify) {
     // Verify mode with claims derived from the audit.
     Certificate cert = certify(dir, c.spec, c.points, &A.complex, claims_from(audit_cert));
     EXPECT_EQ(cert.overall(), Verdict::certified) << cert.to_text(false);
-    for (int id : {1, 2, 3, 4, 5, 6, 8, 10}) EXPECT_EQ(check(cert, id).verdict, Verdict::certified) << id;
-    EXPECT_EQ(check(cert, 9).verdict, Verdict::report);
-    EXPECT_EQ(check(cert, 9).details["result"], "not met");  // realistic density
+    for (CheckId id : {CheckId::input_sanity, CheckId::sparsity, CheckId::stars, CheckId::consistency, CheckId::thickness,
+                       CheckId::power_protection, CheckId::topology, CheckId::star_radius})
+      EXPECT_EQ(check(cert, id).verdict, Verdict::certified) << check_name(id);
+    EXPECT_EQ(check(cert, CheckId::theorem).verdict, Verdict::report);
+    EXPECT_EQ(check(cert, CheckId::theorem).details["result"], "not met");  // realistic density
     // The filter decides (almost) every predicate on non-degenerate input.
     EXPECT_GE(double(cert.filter.total_calls() - cert.filter.total_failures()), 0.999 * double(cert.filter.total_calls()));
   }
@@ -102,23 +104,27 @@ TEST(Certify, OctahedronFixtures) {
   Certificate c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::certified);
   // The exact minimum power margin of the octahedron is 4 (centre (1, 1, 1) on T_p at p = e1).
-  EXPECT_EQ(check(c, 6).margin["min_power_margin"]["certified_lower_bound"], "4");
-  EXPECT_EQ(check(c, 2).margin["min_squared_distance"], "2");
-  EXPECT_EQ(check(c, 8).details["betti_z2"], (std::vector<long>{1, 0, 1}));
+  EXPECT_EQ(check(c, CheckId::power_protection).margin["min_power_margin"]["certified_lower_bound"], "4");
+  EXPECT_EQ(check(c, CheckId::sparsity).margin["min_squared_distance"], "2");
+  EXPECT_EQ(check(c, CheckId::topology).details["betti_z2"], (std::vector<long>{1, 0, 1}));
 
   o.complex = fixture("certify/octahedron.complex");
   o.claims = fixture("certify/octahedron-claims.json");
   c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::certified) << c.to_text(false);
-  for (int id : {2, 3, 4, 5, 6, 8, 10}) EXPECT_EQ(check(c, id).verdict, Verdict::certified) << id;
+  for (CheckId id : {CheckId::sparsity, CheckId::stars, CheckId::consistency, CheckId::thickness, CheckId::power_protection,
+                     CheckId::topology, CheckId::star_radius})
+    EXPECT_EQ(check(c, id).verdict, Verdict::certified) << check_name(id);
 
   // Each false claim is refuted; margin 4 claimed as "> 4" is an exact tie with the claim.
   o.claims = fixture("certify/octahedron-claims-false.json");
   c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::refuted);
-  for (int id : {2, 5, 6, 10}) EXPECT_EQ(check(c, id).verdict, Verdict::refuted) << id;
-  EXPECT_EQ(check(c, 6).witnesses[0]["exact_sign"], 0);
-  for (int id : {3, 4, 8}) EXPECT_EQ(check(c, id).verdict, Verdict::certified) << id;
+  for (CheckId id : {CheckId::sparsity, CheckId::thickness, CheckId::power_protection, CheckId::star_radius})
+    EXPECT_EQ(check(c, id).verdict, Verdict::refuted) << check_name(id);
+  EXPECT_EQ(check(c, CheckId::power_protection).witnesses[0]["exact_sign"], 0);
+  for (CheckId id : {CheckId::stars, CheckId::consistency, CheckId::topology})
+    EXPECT_EQ(check(c, id).verdict, Verdict::certified) << check_name(id);
 }
 
 TEST(Certify, BrokenComplexesAreRefutedWithWitnesses) {
@@ -129,29 +135,29 @@ TEST(Certify, BrokenComplexesAreRefutedWithWitnesses) {
   o.complex = fixture("certify/octahedron-missing.complex");
   Certificate c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::refuted);
-  const CheckEntry& stars = check(c, 3);
+  const CheckEntry& stars = check(c, CheckId::stars);
   EXPECT_EQ(stars.verdict, Verdict::refuted);
   bool named = false;
   for (const auto& w : stars.witnesses)
     named = named || (w["kind"] == "missing_simplex" && w["simplex"] == std::vector<int>{0, 3, 5});
   EXPECT_TRUE(named) << stars.witnesses.dump();
-  EXPECT_EQ(check(c, 8).verdict, Verdict::refuted);
+  EXPECT_EQ(check(c, CheckId::topology).verdict, Verdict::refuted);
 
   o.complex = fixture("certify/octahedron-flipped.complex");
   c = run_certify(o);
-  EXPECT_EQ(check(c, 3).verdict, Verdict::refuted);
+  EXPECT_EQ(check(c, CheckId::stars).verdict, Verdict::refuted);
   // (0 2 3) projects to a segment in T_0: 2 and 3 are antipodal around 0.
   bool degenerate = false;
-  for (const auto& w : check(c, 3).witnesses)
+  for (const auto& w : check(c, CheckId::stars).witnesses)
     degenerate = degenerate || (w["kind"] == "degenerate_in_tangent_space" && w["simplex"] == std::vector<int>{0, 2, 3});
-  EXPECT_TRUE(degenerate) << check(c, 3).witnesses.dump();
-  EXPECT_EQ(check(c, 4).verdict, Verdict::refuted);
+  EXPECT_TRUE(degenerate) << check(c, CheckId::stars).witnesses.dump();
+  EXPECT_EQ(check(c, CheckId::consistency).verdict, Verdict::refuted);
 
   o.complex = fixture("certify/octahedron-edges.complex");
   c = run_certify(o);
-  EXPECT_EQ(check(c, 3).verdict, Verdict::refuted);
-  EXPECT_EQ(check(c, 3).witnesses[0]["kind"], "wrong_dimension");
-  EXPECT_EQ(check(c, 8).verdict, Verdict::refuted);
+  EXPECT_EQ(check(c, CheckId::stars).verdict, Verdict::refuted);
+  EXPECT_EQ(check(c, CheckId::stars).witnesses[0]["kind"], "wrong_dimension");
+  EXPECT_EQ(check(c, CheckId::topology).verdict, Verdict::refuted);
 }
 
 // A 32-vertex simplex (2^32 faces; `1u << 32` is undefined): refuted at once by check 3 with the
@@ -163,7 +169,7 @@ TEST(Certify, OversizedSimplexIsRefutedWithoutEnumeratingFaces) {
   o.complex = fixture("soundness/hang/complex-32simplex.txt");
   Certificate c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::refuted);
-  const CheckEntry& stars = check(c, 3);
+  const CheckEntry& stars = check(c, CheckId::stars);
   EXPECT_EQ(stars.verdict, Verdict::refuted);
   std::vector<int> all(32);
   std::iota(all.begin(), all.end(), 0);
@@ -171,7 +177,7 @@ TEST(Certify, OversizedSimplexIsRefutedWithoutEnumeratingFaces) {
   for (const auto& w : stars.witnesses)
     named = named || (w["kind"] == "wrong_dimension" && w["simplex"] == all && w["dimension"] == 31);
   EXPECT_TRUE(named) << stars.witnesses.dump();
-  EXPECT_EQ(check(c, 8).verdict, Verdict::refuted);  // not pure
+  EXPECT_EQ(check(c, CheckId::topology).verdict, Verdict::refuted);  // not pure
 }
 
 TEST(Certify, ExactlyDegenerateInputIsNeverCertified) {
@@ -184,10 +190,10 @@ TEST(Certify, ExactlyDegenerateInputIsNeverCertified) {
     o.points = fixture(pts);
     Certificate c = run_certify(o);
     EXPECT_NE(c.overall(), Verdict::certified);
-    EXPECT_EQ(check(c, 6).verdict, Verdict::refuted);  // not protected: an exact tie
-    EXPECT_GT(check(c, 6).details["exact_ties"].get<long>(), 0);
-    EXPECT_EQ(check(c, 6).witnesses[0]["exact_sign"], 0);
-    EXPECT_NE(check(c, 3).verdict, Verdict::certified);  // the star is not unique
+    EXPECT_EQ(check(c, CheckId::power_protection).verdict, Verdict::refuted);  // not protected: an exact tie
+    EXPECT_GT(check(c, CheckId::power_protection).details["exact_ties"].get<long>(), 0);
+    EXPECT_EQ(check(c, CheckId::power_protection).witnesses[0]["exact_sign"], 0);
+    EXPECT_NE(check(c, CheckId::stars).verdict, Verdict::certified);  // the star is not unique
   }
   // Larger exactly degenerate grids (cos/sin rounded, still exactly degenerate by the product
   // structure of the torus), given with one of their triangulations.
@@ -208,9 +214,46 @@ TEST(Certify, ExactlyDegenerateInputIsNeverCertified) {
     }
   Certificate c = certify(dir, "builtin:clifford-torus-2", P, &K);
   EXPECT_NE(c.overall(), Verdict::certified);
-  EXPECT_EQ(check(c, 6).verdict, Verdict::refuted);
-  EXPECT_NE(check(c, 3).verdict, Verdict::certified);
-  EXPECT_EQ(check(c, 8).verdict, Verdict::certified);  // the complex itself is a fine torus
+  EXPECT_EQ(check(c, CheckId::power_protection).verdict, Verdict::refuted);
+  EXPECT_NE(check(c, CheckId::stars).verdict, Verdict::certified);
+  EXPECT_EQ(check(c, CheckId::topology).verdict, Verdict::certified);  // the complex itself is a fine torus
+}
+
+// Bad input names the line the parser read it from. Before the readers returned line numbers the
+// certifier rescanned the text, and took a leading comment for the header: a point of an OFF file
+// with a one-line header ("OFF 6 0 0") was named by the next point's line, and a delcert-complex
+// file's vertex count by line 1 (the "1" of "v1" looked like a count).
+TEST(Certify, BadInputIsNamedByTheLineItIsOn) {
+  TempDir dir("lines");
+  auto line_of_error = [](const CertifyOptions& o) -> long {
+    try {
+      run_certify(o);
+    } catch (const io::InputError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  const std::string octahedron = "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n";
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  // Point 2 is off the sphere.
+  for (const auto& [header, line] : {std::pair<std::string, long>{"# the octahedron, one vertex moved\nOFF 6 0 0\n", 5},
+                                     std::pair<std::string, long>{"# c\nnOFF\n3\n6 0 0\n", 7}}) {
+    SCOPED_TRACE(header);
+    o.points = dir.file("moved.off");
+    write_text(o.points, header + "1 0 0\n-1 0 0\n0 1.5 0\n0 -1 0\n0 0 1\n0 0 -1\n");
+    EXPECT_EQ(line_of_error(o), line);
+  }
+  // An OFF complex whose vertex 3 differs from point 3: line 6.
+  o.points = dir.file("points.off");
+  write_text(o.points, "OFF\n6 0 0\n" + octahedron);
+  o.complex = dir.file("complex.off");
+  write_text(o.complex, "# c\nOFF 6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1.5 0\n0 0 1\n0 0 -1\n"
+                        "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n");
+  EXPECT_EQ(line_of_error(o), 6);
+  // A complex on 5 vertices for 6 points: the vertex count is on line 2.
+  o.complex = fixture("certify/octahedron-wrong-count.complex");
+  EXPECT_EQ(line_of_error(o), 2);
 }
 
 }  // namespace

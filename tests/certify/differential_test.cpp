@@ -90,9 +90,9 @@ std::string claims_for(const Certificate& c) {
     const double v = std::strtod(s.get<std::string>().c_str(), nullptr);  // "inf", "-inf" too
     return std::isfinite(v) ? v : 0.0;
   };
-  const auto& r = check(c, 10).margin;
-  const auto& d = check(c, 2).margin;
-  const auto& p = check(c, 6).margin;
+  const auto& r = check(c, CheckId::star_radius).margin;
+  const auto& d = check(c, CheckId::sparsity).margin;
+  const auto& p = check(c, CheckId::power_protection).margin;
   if (r.is_null() || d.is_null() || p.is_null()) return "";
   char buf[512];
   std::snprintf(buf, sizeof buf,

@@ -40,9 +40,9 @@ std::string claims_for(const Certificate& c) {
     EXPECT_TRUE(end != t.c_str() && std::isfinite(v)) << "not a finite number: " << t;
     return v;
   };
-  double r2 = D(check(c, 10).margin["max_radius_squared"]["certified_upper_bound"]);
-  double d = D(check(c, 2).margin["min_distance"]["certified_lower_bound"]);
-  double prot = D(check(c, 6).margin["min_power_margin"]["certified_lower_bound"]);
+  double r2 = D(check(c, CheckId::star_radius).margin["max_radius_squared"]["certified_upper_bound"]);
+  double d = D(check(c, CheckId::sparsity).margin["min_distance"]["certified_lower_bound"]);
+  double prot = D(check(c, CheckId::power_protection).margin["min_power_margin"]["certified_lower_bound"]);
   char buf[512];
   std::snprintf(buf, sizeof buf, R"({"format": "delcert-claims v1", "eps": "%.17g", "sparsity": "%.17g", "power_protection": "%.17g"})",
                 std::sqrt(r2) * 1.01, d * 0.99, prot * 0.5);
@@ -253,11 +253,11 @@ void run_mutants(const Base& B, Tally& tally) {
         // Cross-check with the independent exact sign: inside -> wrong star; on -> tie; outside ->
         // a margin far below the claim.
         if (sign < 0) {
-          EXPECT_EQ(check(c, 3).verdict, Verdict::refuted);
+          EXPECT_EQ(check(c, CheckId::stars).verdict, Verdict::refuted);
         } else if (sign == 0) {
-          EXPECT_GT(check(c, 6).details["exact_ties"].get<long>(), 0);
+          EXPECT_GT(check(c, CheckId::power_protection).details["exact_ties"].get<long>(), 0);
         } else {
-          EXPECT_EQ(check(c, 6).verdict, Verdict::refuted);
+          EXPECT_EQ(check(c, CheckId::power_protection).verdict, Verdict::refuted);
         }
         tally.by_kind[sign < 0 ? "  (inside)" : sign == 0 ? "  (exactly on)" : "  (outside)"][1]++;
         break;

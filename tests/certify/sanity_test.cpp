@@ -42,7 +42,7 @@ TEST(Sanity, SquaredSphereIsNeverCertified) {
   o.complex = fixture("certify/octahedron.complex");
   Certificate c = run_certify(o);
   EXPECT_EQ(c.overall(), Verdict::certified) << c.to_text(false);
-  EXPECT_LE(upper_bound(check(c, 1)), 1e-15);
+  EXPECT_LE(upper_bound(check(c, CheckId::input_sanity)), 1e-15);
 }
 
 TEST(Sanity, SquaredSphereExitsWithStatus2AndNoCertificate) {

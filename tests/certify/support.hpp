@@ -199,10 +199,10 @@ inline std::string last_line(const std::string& text) {
   return p == std::string::npos ? t : t.substr(p + 1);
 }
 
-inline const CheckEntry& check(const Certificate& c, int id) {
+inline const CheckEntry& check(const Certificate& c, CheckId id) {
   for (const auto& e : c.checks)
     if (e.id == id) return e;
-  throw std::runtime_error("no check " + std::to_string(id));
+  throw std::runtime_error(std::string("no check ") + check_name(id));
 }
 
 }  // namespace delcert::certify::test

@@ -35,6 +35,19 @@ TEST(Complex, OffSurfaceRoundTrip) {
   EXPECT_EQ(format_off(*back.embedded_points, back.complex), text);
 }
 
+// The line of the vertex count and of each embedded point, for the certifier's messages.
+TEST(Complex, ParserGivesTheLinesOfTheCountsAndOfEmbeddedPoints) {
+  ComplexFile c = parse_complex("# comment\ndelcert-complex v1\n\n3 1\n0 1 2\n", "mem");
+  EXPECT_EQ(c.counts_line, 4);
+  EXPECT_TRUE(c.embedded_point_lines.empty());
+  ComplexFile off = parse_complex("OFF\n# c\n3 1 0\n0 0 1\n0 1 0\n\n1 0 0\n3 0 1 2\n", "mem.off");
+  EXPECT_EQ(off.counts_line, 3);
+  EXPECT_EQ(off.embedded_point_lines, (std::vector<long>{4, 5, 7}));
+  ComplexFile one_line = parse_complex("# c\nOFF 3 1 0\n0 0 1\n0 1 0\n1 0 0\n3 0 1 2\n", "mem.off");
+  EXPECT_EQ(one_line.counts_line, 2);
+  EXPECT_EQ(one_line.embedded_point_lines, (std::vector<long>{3, 4, 5}));
+}
+
 struct BadCase {
   const char* file;
   long line;

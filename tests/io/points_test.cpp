@@ -52,6 +52,32 @@ TEST(Points, RoundTripIsBitExactInEveryFormat) {
   EXPECT_THROW(format_points(awkward_points(4, 3), PointFormat::off), std::invalid_argument);
 }
 
+// Every point's line, in each format and wherever the header's numbers sit: comments and blank
+// lines before or inside the header, OFF counts on the tag's line, nOFF numbers sharing lines.
+TEST(Points, ParserGivesTheLineOfEveryPoint) {
+  struct Case {
+    const char* text;
+    std::vector<long> lines;
+  };
+  const Case cases[] = {
+      {"delcert-points v1\n1 2\n0.5\n\n# c\n1.5\n", {3, 6}},
+      {"# comment\n\ndelcert-points v1\n# c\n1 2\n0.5\n1.5\n", {6, 7}},
+      {"OFF\n2 0 0\n1 0 0\n0 1 0\n", {3, 4}},
+      {"OFF 2 0 0\n1 0 0\n0 1 0\n", {2, 3}},
+      {"# comment\nOFF 2 0 0\n1 0 0\n0 1 0\n", {3, 4}},
+      {"# comment\nnOFF\n2\n2 0 0\n1 0\n0 1\n", {5, 6}},
+      {"nOFF 2\n2 0 0\n1 0\n\n0 1\n", {3, 5}},
+      {"nOFF 2 2 0 0\n1 0\n0 1\n", {2, 3}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.text);
+    PointsFile f = parse_points_file(c.text, "mem");
+    EXPECT_EQ(f.lines, c.lines);
+    EXPECT_EQ(f.points.size(), c.lines.size());
+    EXPECT_TRUE(bit_identical(f.points, parse_points(c.text, "mem")));
+  }
+}
+
 TEST(Points, WriteIsAtomicAndReadable) {
   test::TempDir dir("points");
   PointSet ps = awkward_points(4, 50);
