@@ -23,7 +23,7 @@ std::vector<int> parse_simplex(const std::vector<std::string_view>& tokens, std:
     throw InputError(file, line,
                      "a simplex with " + std::to_string(tokens.size() - first) + " vertices; at most " +
                          std::to_string(kMaxSimplexVertices) +
-                         " are allowed (ambient dimension <= 64), and a simplex of an m-manifold has m + 1");
+                         " are allowed (ambient dimension <= " + std::to_string(kMaxAmbientDimension) + "), and a simplex of an m-manifold has m + 1");
   for (std::size_t k = first; k < tokens.size(); ++k) {
     long v = parse_count(tokens[k], file, line, "a vertex index");
     if (static_cast<std::size_t>(v) >= num_vertices)

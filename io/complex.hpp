@@ -16,10 +16,10 @@
 namespace delcert::io {
 
 // At most this many vertices in one simplex: a simplex of an m-manifold sample in R^N has at most
-// N + 1 <= 65 affinely independent vertices (the spec reader allows ambient dimension <= 64).
+// N + 1 <= 65 affinely independent vertices (the spec reader allows ambient dimension <= kMaxAmbientDimension = 64).
 // Longer lines are refused by the reader (exit 2, with file and line), so no consumer ever
 // meets a simplex whose 2^n faces could not be enumerated or whose n overflows `1u << n`.
-inline constexpr std::size_t kMaxSimplexVertices = 65;
+inline constexpr std::size_t kMaxSimplexVertices = kMaxAmbientDimension + 1;
 
 struct Complex {
   std::size_t num_vertices = 0;

@@ -15,6 +15,11 @@
 
 namespace delcert::io {
 
+// The largest ambient dimension N a spec may declare. Every fixed-size scratch array over
+// coordinates (core's neighbour search and star projection) and the complex reader's limit of
+// N + 1 vertices per simplex follow from it.
+inline constexpr int kMaxAmbientDimension = 64;
+
 struct PointSet {
   int dimension = 0;
   std::vector<double> coordinates;  // #points by dimension, row-major

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/points.hpp"
 #include "io/strict_json.hpp"
 
 namespace delcert::io {
@@ -150,7 +151,7 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
   ManifoldSpec s;
   s.source = source;
   if (j.contains("name")) s.name = get_string(j.at("name"), "name", c);
-  s.ambient_dimension = static_cast<int>(get_int(require(j, "ambient_dimension", c), "ambient_dimension", c, 2, 64));
+  s.ambient_dimension = static_cast<int>(get_int(require(j, "ambient_dimension", c), "ambient_dimension", c, 2, kMaxAmbientDimension));
   const int N = s.ambient_dimension;
   s.intrinsic_dimension = static_cast<int>(get_int(require(j, "intrinsic_dimension", c), "intrinsic_dimension", c, 1, N - 1));
   const int m = s.intrinsic_dimension;

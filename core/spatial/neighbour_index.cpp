@@ -10,7 +10,7 @@ namespace delcert::spatial {
 namespace {
 
 constexpr std::size_t kLeafSize = 8;
-constexpr int kMaxDimension = 64;
+constexpr int kMaxDimension = io::kMaxAmbientDimension;
 // A cell is skipped only when its lower bound exceeds the current threshold by more than the
 // rounding of either side (incremental bounds and point distances agree to a few ulps).
 constexpr double kPruneSlack = 1 + 1e-12;
@@ -18,7 +18,7 @@ constexpr double kPruneSlack = 1 + 1e-12;
 }  // namespace
 
 NeighbourIndex::NeighbourIndex(const io::PointSet& points) : d_(points.dimension), n_(points.size()) {
-  if (d_ > kMaxDimension) throw std::invalid_argument("NeighbourIndex: dimension above 64 is not supported");
+  if (d_ > kMaxDimension) throw std::invalid_argument("NeighbourIndex: dimension above " + std::to_string(kMaxDimension) + " is not supported");
   coords_ = points.coordinates;
   ids_.resize(n_);
   std::iota(ids_.begin(), ids_.end(), std::size_t{0});

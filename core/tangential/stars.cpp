@@ -43,7 +43,7 @@ namespace detail {
 
 void project_neighbour(const double* p, const double* q, const double* basis, int N, int m, double scale,
                        LocalPoint& out) {
-  double diff[64];
+  double diff[io::kMaxAmbientDimension];
   double d2 = 0;
   for (int k = 0; k < N; ++k) {
     diff[k] = (q[k] - p[k]) * scale;  // exact scaling by a power of two
@@ -362,7 +362,8 @@ void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const
   if (planes.ambient_dimension() != points.dimension)
     throw std::invalid_argument("tangent planes live in R^" + std::to_string(planes.ambient_dimension()) +
                                 " but the points in R^" + std::to_string(points.dimension));
-  if (points.dimension > 64) throw std::invalid_argument("ambient dimension above 64 is not supported");
+  if (points.dimension > io::kMaxAmbientDimension)
+    throw std::invalid_argument("ambient dimension above " + std::to_string(io::kMaxAmbientDimension) + " is not supported");
   if (planes.size() < points.size())
     throw std::invalid_argument("tangent planes cover " + std::to_string(planes.size()) + " of " +
                                 std::to_string(points.size()) + " points");
