@@ -16,40 +16,71 @@ namespace delcert::exact {
 
 using detail::IA;
 
+// A square system is the parametric system with no parameters (m = 0): one implementation.
 struct SquareSystem::Impl {
-  int n = 0;
-  std::vector<Polynomial> f;
+  int n = 0;                                  // equations and unknowns
+  int m = 0;                                  // parameters: variables 1..m of every equation
+  std::vector<Polynomial> f;                  // in m + n variables (u, x)
   std::vector<std::vector<Interval>> f_coef;  // enclosures of the coefficients
-  std::vector<Polynomial> df;                 // n x n row-major: d f_i / d x_j
+  std::vector<Polynomial> df;                 // n x n row-major: d f_i / d x_j (unknowns)
   std::vector<std::vector<Interval>> df_coef;
+  std::vector<Polynomial> du;                 // n x m row-major: d f_i / d u_a (parameters)
+  std::vector<std::vector<Interval>> du_coef;
 };
 
 using detail::coefficient_enclosures;
 using detail::evaluate;
 using detail::finite;
 
-SquareSystem::SquareSystem(std::vector<Polynomial> equations) {
-  auto impl = std::make_shared<Impl>();
+namespace {
+
+// Prepares n equations in m + n variables (the first m are the parameters). `what` names the
+// system in error messages.
+std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> equations, int m, const char* what) {
+  auto impl = std::make_shared<SquareSystem::Impl>();
   const int n = static_cast<int>(equations.size());
-  if (n < 1) throw std::invalid_argument("a square system needs at least one equation");
+  if (n < 1) throw std::invalid_argument(std::string("a ") + what + " needs at least one equation");
+  if (m < 0) throw std::invalid_argument(std::string("a ") + what + " needs a non-negative number of parameters");
+  const int vars = m + n;
   for (int i = 0; i < n; ++i)
-    if (equations[i].num_variables() != n && !equations[i].is_zero())
-      throw std::invalid_argument("square system: equation " + std::to_string(i + 1) + " has " +
+    if (equations[i].num_variables() != vars && !equations[i].is_zero())
+      throw std::invalid_argument(std::string(what) + ": equation " + std::to_string(i + 1) + " has " +
                                   std::to_string(equations[i].num_variables()) + " variables, expected " +
-                                  std::to_string(n) + " (as many as equations)");
+                                  std::to_string(vars) +
+                                  (m == 0 ? std::string(" (as many as equations)")
+                                          : " (" + std::to_string(m) + " parameters + " + std::to_string(n) +
+                                                " unknowns)"));
   impl->n = n;
+  impl->m = m;
   impl->f = std::move(equations);
   for (auto& p : impl->f) {
-    if (p.num_variables() != n) p = Polynomial(n);  // the zero polynomial, over n variables
+    if (p.num_variables() != vars) p = Polynomial(vars);  // the zero polynomial, over m + n variables
     impl->f_coef.push_back(coefficient_enclosures(p));
   }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      impl->df.push_back(impl->f[i].derivative(j));
+      impl->df.push_back(impl->f[i].derivative(m + j));
       impl->df_coef.push_back(coefficient_enclosures(impl->df.back()));
     }
-  impl_ = std::move(impl);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < m; ++a) {
+      impl->du.push_back(impl->f[i].derivative(a));
+      impl->du_coef.push_back(coefficient_enclosures(impl->du.back()));
+    }
+  return impl;
 }
+
+}  // namespace
+
+SquareSystem::SquareSystem(std::vector<Polynomial> equations)
+    : impl_(make_system(std::move(equations), 0, "square system")) {}
+
+ParametricSystem::ParametricSystem(std::vector<Polynomial> equations, int num_parameters)
+    : impl_(make_system(std::move(equations), num_parameters, "parametric system")) {}
+
+int ParametricSystem::size() const { return impl_->n; }
+int ParametricSystem::num_parameters() const { return impl_->m; }
+const std::vector<Polynomial>& ParametricSystem::equations() const { return impl_->f; }
 
 int SquareSystem::size() const { return impl_->n; }
 const std::vector<Polynomial>& SquareSystem::equations() const { return impl_->f; }
@@ -65,26 +96,56 @@ std::string_view to_string(RootStatus status) {
 
 namespace {
 
-// One Krawczyk operator evaluation K(X). Returns false when it cannot be evaluated (overflow,
-// singular midpoint Jacobian); then nothing is known.
-bool krawczyk_operator(const SquareSystem::Impl& S, const Box& X, Box& K) {
-  const int n = S.n;
-  std::vector<double> y(n);
-  std::vector<IA> xs(n), ys(n), fy(n), jx(static_cast<std::size_t>(n) * n);
+// One Krawczyk operator evaluation K(U, X) (U: the parameter box, empty for a square system).
+// Returns false when it cannot be evaluated (overflow, singular midpoint Jacobian); then nothing
+// is known.
+//
+// Every interval below is an enclosure: the caller-independent EnsureUpward guard makes CGAL's
+// Interval_nt_advanced round every bound outward (its lower bounds are computed as -(upward(-x)),
+// so a negative overflow gives -inf, never the finite -DBL_MAX; an upper bound that overflows is
+// +inf); gradual underflow is rounded in the same direction (IEEE directed rounding; the build
+// uses no flush-to-zero). A non-finite bound ends the evaluation (return false), so every box
+// that leaves this function has finite bounds that enclose what they claim.
+bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
+  const int n = S.n, m = S.m;
+  std::vector<double> y(n), u0(m);
+  std::vector<IA> xs(m + n), ys(m + n), fy(n), jx(static_cast<std::size_t>(n) * n);
   Eigen::MatrixXd Jmid(n, n), Y(n, n);
-  // Midpoint, clamped into X whatever the rounding mode.
+  // Midpoints, clamped into X and U whatever the rounding mode (any point of X works as the
+  // centre; the centred form below needs only u0 in U).
   for (int i = 0; i < n; ++i) y[i] = std::clamp(X[i].lo + 0.5 * (X[i].hi - X[i].lo), X[i].lo, X[i].hi);
+  for (int a = 0; a < m; ++a) u0[a] = std::clamp(U[a].lo + 0.5 * (U[a].hi - U[a].lo), U[a].lo, U[a].hi);
   bool ok = true;
   {
     detail::EnsureUpward guard;
+    for (int a = 0; a < m; ++a) xs[a] = ys[a] = IA(U[a].lo, U[a].hi);
     for (int i = 0; i < n; ++i) {
-      xs[i] = IA(X[i].lo, X[i].hi);
-      ys[i] = IA(y[i]);
+      xs[m + i] = IA(X[i].lo, X[i].hi);
+      ys[m + i] = IA(y[i]);
     }
+    // G(U, y): plain interval evaluation ...
     for (int i = 0; i < n; ++i) {
       fy[i] = evaluate(S.f[i], S.f_coef[i], std::span<const IA>(ys));
       ok = ok && finite(fy[i]);
     }
+    // ... intersected with the centred (mean-value) form G(u0, y) + J_u(U, y) (U - u0): for each
+    // u in U, G_i(u, y) = G_i(u0, y) + grad_u G_i(xi, y) . (u - u0) with xi on the segment
+    // [u0, u], inside the convex box U, so both forms enclose G_i(u, y) and so does their
+    // intersection (never empty in exact terms; an empty one would mean a bug, and is refused).
+    if (m > 0 && ok) {
+      std::vector<IA> zs = ys;
+      for (int a = 0; a < m; ++a) zs[a] = IA(u0[a]);
+      for (int i = 0; i < n; ++i) {
+        IA c = evaluate(S.f[i], S.f_coef[i], std::span<const IA>(zs));
+        for (int a = 0; a < m; ++a)
+          c = c + evaluate(S.du[i * m + a], S.du_coef[i * m + a], std::span<const IA>(ys)) * (ys[a] - IA(u0[a]));
+        if (!finite(c)) continue;  // the plain form alone is still an enclosure
+        const double lo = std::max(c.inf(), fy[i].inf()), hi = std::min(c.sup(), fy[i].sup());
+        if (!(lo <= hi)) return false;
+        fy[i] = IA(lo, hi);
+      }
+    }
+    // J_x(U, X): encloses J_x(u, x) for every u in U and x in X.
     for (int i = 0; i < n * n; ++i) {
       jx[i] = evaluate(S.df[i], S.df_coef[i], std::span<const IA>(xs));
       ok = ok && finite(jx[i]);
@@ -102,16 +163,16 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& X, Box& K) {
     Y = lu.inverse();
     if (!Y.allFinite()) return false;
   }
-  // K = y - Y F(y) + (I - Y J(X)) (X - y), all in interval arithmetic.
+  // K = y - Y G(U, y) + (I - Y J_x(U, X)) (X - y), all in interval arithmetic.
   K.assign(n, Interval{});
   detail::EnsureUpward guard;
   for (int i = 0; i < n; ++i) {
-    IA acc = ys[i];
+    IA acc = ys[m + i];
     for (int j = 0; j < n; ++j) acc = acc - IA(Y(i, j)) * fy[j];
     for (int j = 0; j < n; ++j) {
       IA c = IA(i == j ? 1.0 : 0.0);
       for (int l = 0; l < n; ++l) c = c - IA(Y(i, l)) * jx[l * n + j];
-      acc = acc + c * (xs[j] - ys[j]);
+      acc = acc + c * (xs[m + j] - ys[m + j]);
     }
     if (!finite(acc)) return false;
     K[i] = detail::from_ia(acc);
@@ -148,13 +209,19 @@ struct Attempt {
   std::optional<Box> root, region;
 };
 
-Attempt attempt(const SquareSystem::Impl& S, const Box& input, const KrawczykOptions& options) {
+Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, const KrawczykOptions& options) {
   const int n = S.n;
   if (static_cast<int>(input.size()) != n)
     throw std::invalid_argument("box has dimension " + std::to_string(input.size()) + ", the system has " +
                                 std::to_string(n) + " unknowns");
   for (const auto& i : input)
     if (!i.is_finite() || !(i.lo <= i.hi)) throw std::invalid_argument("box intervals must be finite with lo <= hi");
+  if (static_cast<int>(U.size()) != S.m)
+    throw std::invalid_argument("parameter box has dimension " + std::to_string(U.size()) + ", the system has " +
+                                std::to_string(S.m) + " parameters");
+  for (const auto& i : U)
+    if (!i.is_finite() || !(i.lo <= i.hi))
+      throw std::invalid_argument("parameter box intervals must be finite with lo <= hi");
 
   Attempt a;
   a.box = input;
@@ -163,7 +230,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& input, const KrawczykOpt
   // Phase A: contraction X <- K(X) n X. Every root of F in X lies in K(X).
   for (int it = 0; it < options.max_iterations; ++it) {
     a.iterations = it + 1;
-    if (!krawczyk_operator(S, X, K)) break;
+    if (!krawczyk_operator(S, U, X, K)) break;
     if (boxes_disjoint(K, X)) {
       a.status = RootStatus::no_root;
       a.box = input;
@@ -206,7 +273,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& input, const KrawczykOpt
         B[i] = {std::min(c - r, X[i].lo), std::max(c + r, X[i].hi)};
       }
     }
-    if (!krawczyk_operator(S, B, K)) break;
+    if (!krawczyk_operator(S, U, B, K)) break;
     if (strictly_inside(K, B)) {
       a.root = K;
       a.region = B;
@@ -222,16 +289,25 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& input, const KrawczykOpt
   return a;
 }
 
-}  // namespace
-
-KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options) {
-  Attempt a = attempt(system.impl(), box, options);
+KrawczykResult to_result(Attempt a) {
   KrawczykResult r;
   r.status = a.status;
   r.box = std::move(a.box);
   r.iterations = a.iterations;
   return r;
 }
+
+}  // namespace
+
+KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options) {
+  return to_result(attempt(system.impl(), Box{}, box, options));
+}
+
+KrawczykResult krawczyk(const ParametricSystem& system, const Box& parameters, const Box& box,
+                        const KrawczykOptions& options) {
+  return to_result(attempt(system.impl(), parameters, box, options));
+}
+
 
 RootSearchResult find_roots(const SquareSystem& system, const Box& region, const RootSearchOptions& options) {
   RootSearchResult out;
@@ -271,7 +347,7 @@ RootSearchResult find_roots(const SquareSystem& system, const Box& region, const
       continue;
     }
     ++out.boxes_examined;
-    Attempt a = attempt(system.impl(), item.box, options.krawczyk);
+    Attempt a = attempt(system.impl(), Box{}, item.box, options.krawczyk);
     if (a.status == RootStatus::no_root) continue;
     if (a.root) {
       // Every root of this box is the verified root (which may lie just outside the box).

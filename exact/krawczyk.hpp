@@ -17,6 +17,32 @@
 //
 // A tangency (a singular root) can never be certified unique: the answer there is "undecided",
 // which is the correct answer.
+//
+// Parametric version (ParametricSystem; the chart enclosures of exact/chart.hpp). For a system
+// G(u, x) = 0 of n equations in m parameters u, ranging over a box U, and n unknowns x, in a box X:
+//   K(U, X) = c - Y G(U, c) + (I - Y J_x(U, X)) (X - c),   c = midpoint of X,
+// with G(U, c) any enclosure of { G(u, c) : u in U } (we take the intersection of the plain
+// interval evaluation and the centred form G(u0, c) + J_u(U, c) (U - u0), u0 = midpoint of U)
+// and J_x(U, X) an enclosure of { J_x(u, x) : u in U, x in X }. Claim:
+//   * K(U, X) inside the interior of X => for EVERY u in U, G(u, .) has exactly one root in X,
+//                                         and it lies in K(U, X) intersected with X;
+//   * K(U, X) and X disjoint           => no u in U has a root in X.
+// Proof: fix u in U and let K_u(X) = c - Y G(u, c) + (I - Y J_x(u, X)) (X - c) be the ordinary
+// Krawczyk operator of the square system G(u, .) with the SAME c and Y. Since G(u, c) lies in
+// G(U, c) and J_x(u, X) lies in J_x(U, X), inclusion isotonicity of interval arithmetic gives
+// K_u(X) inside K(U, X). The standard theorem for the square system G(u, .) (Krawczyk 1969;
+// Neumaier, "Interval methods for systems of equations", CUP 1990, Thm. 5.1.7 and 5.1.8; Rump,
+// Acta Numerica 2010, Thm. 8.1) applied to K_u(X) gives both claims for this u: every root of
+// G(u, .) in X lies in K_u(X) (hence the "disjoint" case), and K_u(X) inside int X implies a
+// unique root in X (the continuous map x -> x - Y G(u, x) sends X into K_u(X) by the mean value
+// form, so Brouwer gives a fixed point; the strict inclusion forces the spectral radius of
+// |I - Y J_x(u, X)| below 1, so Y and every matrix of J_x(u, X) are nonsingular, and two roots
+// x, x' would give 0 = Y J (x - x') with J in J_x(u, X), i.e. x = x'). As u was
+// arbitrary, the claims hold for all u in U. The contraction X <- K(U, X) n X and the
+// epsilon-inflation of krawczyk() keep every root of every u, by the same argument per u.
+// The centred form is an enclosure by the mean value theorem per component: G_i(u, c) =
+// G_i(u0, c) + grad_u G_i(xi, c) . (u - u0) for some xi on [u0, u], inside U because U is
+// convex. A square system is the case m = 0.
 #pragma once
 
 #include <memory>
@@ -45,6 +71,22 @@ class SquareSystem {
   std::shared_ptr<const Impl> impl_;
 };
 
+// n polynomials in m + n variables: variables 1..m are the parameters u, m+1..m+n the unknowns
+// x, with the exact partial derivatives in both. Immutable, cheap to copy, thread-safe to share.
+class ParametricSystem {
+ public:
+  // Throws std::invalid_argument unless there are n >= 1 polynomials in m + n variables, m >= 0.
+  ParametricSystem(std::vector<Polynomial> equations, int num_parameters);
+  int size() const;            // n
+  int num_parameters() const;  // m
+  const std::vector<Polynomial>& equations() const;
+
+  const SquareSystem::Impl& impl() const { return *impl_; }
+
+ private:
+  std::shared_ptr<const SquareSystem::Impl> impl_;
+};
+
 enum class RootStatus { unique_root, no_root, undecided };
 std::string_view to_string(RootStatus status);
 
@@ -68,6 +110,14 @@ struct KrawczykResult {
 // Throws std::invalid_argument for a box of the wrong dimension or with non-finite or empty
 // intervals.
 KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options = {});
+
+// The parametric Krawczyk test: unique_root means that for EVERY u in `parameters` exactly one
+// root of G(u, .) lies in `box`, and it lies in the result's box; no_root means that no u in
+// `parameters` has a root in `box`; undecided: the result's box holds every root in `box` of
+// every u in `parameters`. Throws std::invalid_argument for boxes of the wrong dimensions or
+// with non-finite or empty intervals.
+KrawczykResult krawczyk(const ParametricSystem& system, const Box& parameters, const Box& box,
+                        const KrawczykOptions& options = {});
 
 struct RootSearchOptions {
   int max_depth = 40;         // bisection depth limit

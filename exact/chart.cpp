@@ -1,0 +1,278 @@
+#include "exact/chart.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "exact/detail/cgal_number_types.hpp"
+#include "exact/detail/interval_polynomial.hpp"
+#include "exact/number_types.hpp"
+
+namespace delcert::exact {
+
+using detail::IA;
+
+std::string_view to_string(ChartStatus status) {
+  switch (status) {
+    case ChartStatus::unique: return "unique";
+    case ChartStatus::none: return "none";
+    case ChartStatus::undecided: return "undecided";
+  }
+  return "unknown";
+}
+
+struct ChartEnclosure::Impl {
+  int N = 0, m = 0, k = 0;
+  std::vector<double> p;
+  std::vector<mpq_class> T, Nn;              // N x m, N x k, row-major
+  std::vector<Interval> T_enc, Nn_enc;       // their enclosures
+  ParametricSystem G;                        // k equations in (u, h)
+  std::vector<DoublePolynomial> g, gh, gu;   // G, d G_i / d h_j (k x k), d G_i / d u_a (k x m)
+  ChartOptions options;
+
+  Impl(ParametricSystem system) : G(std::move(system)) {}
+};
+
+namespace {
+
+// F(p + T u + Nn h) exactly: every variable x_v of F is replaced by the affine polynomial
+// A_v = p_v + sum_a T_va u_a + sum_l Nn_vl h_l in the m + k variables (u, h), and the products
+// are expanded in exact rational arithmetic.
+Polynomial substitute_affine(const Polynomial& f, const std::vector<Polynomial>& A, int vars) {
+  Polynomial out(vars);
+  std::vector<std::vector<Polynomial>> powers(A.size());  // powers[v][e] = A_v^e, filled lazily
+  auto power = [&](std::size_t v, std::uint32_t e) -> const Polynomial& {
+    auto& pw = powers[v];
+    if (pw.empty()) pw.push_back(Polynomial::constant(1, vars));
+    while (pw.size() <= e) pw.push_back(pw.back() * A[v]);
+    return pw[e];
+  };
+  for (const auto& t : f.terms()) {
+    Polynomial prod = Polynomial::constant(t.coefficient, vars);
+    for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v)
+      if (t.monomial.exponents[v] > 0) prod = prod * power(v, t.monomial.exponents[v]);
+    out = out + prod;
+  }
+  return out;
+}
+
+// The power of two 2^s with max |column entry| * 2^s in [1/2, 1) (1 for a zero column).
+mpq_class column_scale(const std::vector<mpq_class>& M, int rows, int cols, int c) {
+  mpq_class big = 0;
+  for (int r = 0; r < rows; ++r) big = std::max(big, mpq_class(abs(M[r * cols + c])));
+  if (big == 0) return 1;
+  mpq_class s = 1;
+  while (big * s >= 1) s /= 2;
+  while (big * s < mpq_class(1, 2)) s *= 2;
+  return s;
+}
+
+double max_abs(std::span<const double> v) {
+  double r = 0;
+  for (double x : v) r = std::max(r, std::abs(x));
+  return r;
+}
+
+}  // namespace
+
+ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
+                               std::vector<mpq_class> Nn, ChartOptions options) {
+  const int N = F.ambient_dimension(), k = F.codimension(), m = N - k;
+  if (static_cast<int>(p.size()) != N)
+    throw std::invalid_argument("chart: base point has " + std::to_string(p.size()) + " coordinates, expected " +
+                                std::to_string(N));
+  for (double x : p)
+    if (!std::isfinite(x)) throw std::invalid_argument("chart: base point has a non-finite coordinate");
+  if (static_cast<int>(T.size()) != N * m || static_cast<int>(Nn.size()) != N * k)
+    throw std::invalid_argument("chart: T must be N x m and Nn must be N x (N - m)");
+  if (m < 1) throw std::invalid_argument("chart: the manifold has dimension 0");
+  const int vars = m + k;
+  std::vector<Polynomial> A;
+  for (int v = 0; v < N; ++v) {
+    Polynomial a = Polynomial::constant(to_rational(p[v]), vars);
+    for (int j = 0; j < m; ++j)
+      if (T[v * m + j] != 0) a = a + Polynomial::variable(j, vars).scaled(T[v * m + j]);
+    for (int l = 0; l < k; ++l)
+      if (Nn[v * k + l] != 0) a = a + Polynomial::variable(m + l, vars).scaled(Nn[v * k + l]);
+    A.push_back(std::move(a));
+  }
+  std::vector<Polynomial> G;
+  for (const auto& f : F.equations()) G.push_back(substitute_affine(f, A, vars));
+  auto impl = std::make_shared<Impl>(ParametricSystem(G, m));
+  impl->N = N;
+  impl->m = m;
+  impl->k = k;
+  impl->p.assign(p.begin(), p.end());
+  impl->T = std::move(T);
+  impl->Nn = std::move(Nn);
+  for (const auto& q : impl->T) impl->T_enc.push_back(exact::enclose(q));
+  for (const auto& q : impl->Nn) impl->Nn_enc.push_back(exact::enclose(q));
+  for (int i = 0; i < k; ++i) {
+    impl->g.emplace_back(G[i]);
+    for (int j = 0; j < k; ++j) impl->gh.emplace_back(G[i].derivative(m + j));
+  }
+  for (int i = 0; i < k; ++i)
+    for (int a = 0; a < m; ++a) impl->gu.emplace_back(G[i].derivative(a));
+  impl->options = options;
+  impl_ = std::move(impl);
+}
+
+ChartEnclosure ChartEnclosure::at(const ImplicitSystem& F, std::span<const double> p, ChartOptions options) {
+  const TangentSpace tangent(F, p);
+  const int N = F.ambient_dimension(), k = F.codimension(), m = N - k;
+  std::vector<mpq_class> T(static_cast<std::size_t>(N) * m), Nn(static_cast<std::size_t>(N) * k);
+  for (int v = 0; v < N; ++v)
+    for (int a = 0; a < m; ++a) T[v * m + a] = tangent.basis(v, a);
+  const std::vector<mpq_class> J = F.jacobian_exact(p);  // k x N
+  for (int v = 0; v < N; ++v)
+    for (int l = 0; l < k; ++l) Nn[v * k + l] = J[l * N + v];
+  for (int a = 0; a < m; ++a) {
+    const mpq_class s = column_scale(T, N, m, a);
+    for (int v = 0; v < N; ++v) T[v * m + a] *= s;
+  }
+  for (int l = 0; l < k; ++l) {
+    const mpq_class s = column_scale(Nn, N, k, l);
+    for (int v = 0; v < N; ++v) Nn[v * k + l] *= s;
+  }
+  return ChartEnclosure(F, p, std::move(T), std::move(Nn), options);
+}
+
+int ChartEnclosure::ambient_dimension() const { return impl_->N; }
+int ChartEnclosure::intrinsic_dimension() const { return impl_->m; }
+int ChartEnclosure::codimension() const { return impl_->k; }
+std::span<const double> ChartEnclosure::base_point() const { return impl_->p; }
+const mpq_class& ChartEnclosure::tangent(int row, int col) const { return impl_->T[row * impl_->m + col]; }
+const mpq_class& ChartEnclosure::normal(int row, int col) const { return impl_->Nn[row * impl_->k + col]; }
+const ParametricSystem& ChartEnclosure::chart_system() const { return impl_->G; }
+
+bool ChartEnclosure::image(const Box& U, const Box& H, Box& X) const {
+  const Impl& S = *impl_;
+  if (static_cast<int>(U.size()) != S.m || static_cast<int>(H.size()) != S.k)
+    throw std::invalid_argument("chart image: box dimensions do not match the chart");
+  X.assign(S.N, Interval{});
+  // Interval arithmetic under upward rounding (CGAL's outward-rounded Interval_nt_advanced):
+  // each bound encloses p_v + sum T_va u_a + sum Nn_vl h_l for all u in U, h in H, the entries
+  // of T and Nn enclosed by enclose(). Overflow gives an infinite bound (never -DBL_MAX in a
+  // lower bound: CGAL computes lower bounds as -(upward(-x))), refused below.
+  detail::EnsureUpward guard;
+  for (int v = 0; v < S.N; ++v) {
+    IA acc(S.p[v]);
+    for (int a = 0; a < S.m; ++a) acc = acc + detail::to_ia(S.T_enc[v * S.m + a]) * IA(U[a].lo, U[a].hi);
+    for (int l = 0; l < S.k; ++l) acc = acc + detail::to_ia(S.Nn_enc[v * S.k + l]) * IA(H[l].lo, H[l].hi);
+    if (!detail::finite(acc)) return false;
+    X[v] = detail::from_ia(acc);
+  }
+  return true;
+}
+
+ChartResult ChartEnclosure::enclose_in(const Box& U, const Box& H) const {
+  ChartResult out;
+  const KrawczykResult r = krawczyk(impl_->G, U, H, impl_->options.krawczyk);
+  out.krawczyk_calls = 1;
+  out.H = r.box;
+  if (r.status == RootStatus::no_root) {
+    out.status = ChartStatus::none;
+    out.H = H;
+  } else if (r.status == RootStatus::unique_root) {
+    // Krawczyk: for every u in U exactly one root in the input H, and it lies in r.box, a
+    // subset of H; so it is also the only root in r.box.
+    if (image(U, r.box, out.X)) out.status = ChartStatus::unique;
+  }
+  if (out.status != ChartStatus::unique) out.X.clear();
+  return out;
+}
+
+ChartResult ChartEnclosure::enclose(const Box& U, std::span<const double> h_hint) const {
+  const Impl& S = *impl_;
+  const int m = S.m, k = S.k;
+  if (static_cast<int>(U.size()) != m) throw std::invalid_argument("chart: parameter box has the wrong dimension");
+  for (const auto& i : U)
+    if (!i.is_finite() || !(i.lo <= i.hi)) throw std::invalid_argument("chart: parameter box must be finite, lo <= hi");
+  if (!h_hint.empty() && static_cast<int>(h_hint.size()) != k)
+    throw std::invalid_argument("chart: h hint has the wrong dimension");
+
+  ChartResult out;
+  // Ordinary floating point from here to the Krawczyk test: it only chooses H.
+  std::vector<double> z(m + k), h0(k, 0.0), r(k, 0.0);
+  double rad_u = 0;
+  {
+    NearestRounding nearest;
+    for (int a = 0; a < m; ++a) rad_u = std::max(rad_u, 0.5 * U[a].width());
+    Eigen::MatrixXd Jh(k, k), Ju(k, m);
+    Eigen::VectorXd g(k);
+    // G, J_h, J_u at (z_u, h) in double; false on overflow.
+    auto linearise = [&](const std::vector<double>& h) {
+      for (int i = 0; i < k; ++i) z[m + i] = h[i];
+      for (int i = 0; i < k; ++i) {
+        g(i) = S.g[i](z);
+        for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j](z);
+        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a](z);
+      }
+      return g.allFinite() && Jh.allFinite() && Ju.allFinite();
+    };
+    // Newton for G(z_u, .) = 0 from h; false when it breaks down.
+    auto newton = [&](std::vector<double>& h) {
+      for (int it = 0; it < S.options.newton_steps; ++it) {
+        if (!linearise(h)) return false;
+        Eigen::FullPivLU<Eigen::MatrixXd> lu(Jh);
+        if (!lu.isInvertible()) return false;
+        const Eigen::VectorXd step = lu.solve(g);
+        double size = 0, scale = 0;
+        for (int i = 0; i < k; ++i) {
+          h[i] -= step(i);
+          size = std::max(size, std::abs(step(i)));
+          scale = std::max(scale, std::abs(h[i]));
+        }
+        if (!std::isfinite(size)) return false;
+        if (size <= 0x1.0p-50 * (scale + rad_u)) break;
+      }
+      return linearise(h);
+    };
+    // The centre u0 of U.
+    for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
+    if (!h_hint.empty()) h0.assign(h_hint.begin(), h_hint.end());
+    if (!newton(h0)) return out;  // no approximate point of M over the centre
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(Jh);
+    if (!lu.isInvertible()) return out;
+    // Predicted spread of h over U: linear (|dh/du| rad U, dh/du = -J_h^{-1} J_u at (u0, h0)) ...
+    const Eigen::MatrixXd slope = lu.solve(Ju);
+    for (int i = 0; i < k; ++i)
+      for (int a = 0; a < m; ++a) r[i] += std::abs(slope(i, a)) * 0.5 * U[a].width();
+    // ... and, for the curvature, the Newton solutions at the 2^m corners of U (from h0).
+    for (int corner = 0; corner < (1 << m); ++corner) {
+      for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
+      std::vector<double> hc = h0;
+      if (!newton(hc)) continue;
+      for (int i = 0; i < k; ++i) r[i] = std::max(r[i], std::abs(hc[i] - h0[i]));
+    }
+    double floor_scale = max_abs(h0) + rad_u;
+    if (floor_scale == 0) floor_scale = max_abs(S.p);
+    for (int i = 0; i < k; ++i) {
+      r[i] = S.options.safety * r[i] + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
+      if (!std::isfinite(r[i])) return out;
+    }
+  }
+  for (int attempt = 0; attempt < S.options.attempts; ++attempt) {
+    Box H(k);
+    {
+      NearestRounding nearest;
+      for (int i = 0; i < k; ++i) H[i] = {h0[i] - r[i], h0[i] + r[i]};
+    }
+    bool finite_box = true;
+    for (const auto& i : H) finite_box = finite_box && i.is_finite();
+    if (!finite_box) break;
+    ChartResult res = enclose_in(U, H);
+    res.krawczyk_calls += out.krawczyk_calls;
+    if (res.status == ChartStatus::unique) return res;
+    out = std::move(res);
+    out.status = ChartStatus::undecided;  // a root-free guessed H says nothing about M over U
+    out.X.clear();
+    for (double& x : r) x *= S.options.growth;
+  }
+  return out;
+}
+
+}  // namespace delcert::exact

@@ -1,0 +1,112 @@
+// Certified chart enclosures of an implicit manifold (docs/design.md §2b, §4.1).
+//
+// M = { x in R^N : F(x) = 0 }, F = (F_1..F_k) polynomials with exact rational coefficients,
+// k = N - m. A chart at a base point p (N doubles, taken as exact rationals) uses two exact
+// rational bases, T (N x m, ideally tangent: J_F(p) T = 0) and Nn (N x k, ideally complementary,
+// e.g. the rows of J_F(p)), and writes points near p as
+//   x(u, h) = p + T u + Nn h,   u in R^m (chart parameters), h in R^k (normal coordinates).
+// The chart equations G(u, h) = F(p + T u + Nn h) are formed EXACTLY by substituting the affine
+// expressions into F (Polynomial arithmetic), so G and its partial derivatives are exact
+// polynomials with rational coefficients and the parametric Krawczyk operator of
+// exact/krawczyk.hpp applies to them as it stands. (The alternative, evaluating F and J_F on the
+// interval box x(U, H) and applying the chain rule, keeps F's own structure but loses the
+// cancellation of the constant term F(p) ~ 0, which the exact expansion keeps: its constant term
+// is F(p) exactly, enclosed to one ulp.)
+//
+// enclose(U) for a box U of parameters returns, when it succeeds (status unique), a box H of h
+// and an interval box X of x such that:
+//   for EVERY u in U there is exactly one h in H with F(p + T u + Nn h) = 0, i.e. exactly one
+//   point x(u) of M with parameter u and normal coordinate in H; it lies in X.
+// Whether a point of M with parameter u and normal coordinate OUTSIDE H exists (another sheet
+// of M over the same u, e.g. the far side of a sphere) is not decided here: that is the graph
+// property of the chart, which the caller establishes (reach, or an ambient search; §2b).
+// T and Nn need not be exactly tangent / normal: the statement above holds for any T and Nn;
+// tangency only makes the Krawczyk test succeed more often.
+//
+// Every enclosure is computed in interval arithmetic under upward rounding (exact/interval.hpp;
+// the proof comment of krawczyk.cpp covers overflow and underflow); the ordinary floating-point
+// steps (Newton for the centre, the slope estimate for H, the preconditioner) only choose boxes
+// and never decide anything. Non-finite intermediate bounds make the answer "undecided".
+#pragma once
+
+#include <gmpxx.h>
+
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "exact/interval.hpp"
+#include "exact/krawczyk.hpp"
+#include "exact/tangent_space.hpp"
+
+namespace delcert::exact {
+
+enum class ChartStatus {
+  unique,     // for every u in U exactly one h in H (see above); X encloses those points
+  none,       // (enclose_in only) no u in U has a point of M with normal coordinate in the given H
+  undecided,  // nothing is claimed
+};
+std::string_view to_string(ChartStatus status);
+
+struct ChartOptions {
+  // enclose(): the initial H is h0 +- (safety * predicted spread + floor); after each undecided
+  // Krawczyk test its radius is multiplied by `growth`, at most `attempts` boxes in all.
+  int attempts = 5;
+  double growth = 4.0;
+  double safety = 1.5;
+  int newton_steps = 40;  // Newton iterations (double) for h0 at the centre of U
+  KrawczykOptions krawczyk;
+};
+
+struct ChartResult {
+  ChartStatus status = ChartStatus::undecided;
+  // unique: encloses h(u) for all u in U (contracted by Krawczyk); none: the H shown empty;
+  // undecided: the last H tried (empty when no approximate centre was found).
+  Box H;
+  // unique: interval hull of p + T U + Nn H (outward rounded), the enclosure of the points x(u).
+  Box X;
+  int krawczyk_calls = 0;
+};
+
+class ChartEnclosure {
+ public:
+  // T: N x m and Nn: N x (N - m), row-major, exact rationals. Throws std::invalid_argument on
+  // dimension mismatches or a non-finite coordinate of p.
+  ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
+                 std::vector<mpq_class> Nn, ChartOptions options = {});
+  // The standard chart at p: T is TangentSpace(F, p)'s exact kernel basis and Nn = J_F(p)^T
+  // (exact), every column scaled by a power of two (exactly) so that its largest entry lies in
+  // [1/2, 1). Throws std::domain_error when J_F(p) is rank deficient.
+  static ChartEnclosure at(const ImplicitSystem& F, std::span<const double> p, ChartOptions options = {});
+
+  int ambient_dimension() const;    // N
+  int intrinsic_dimension() const;  // m
+  int codimension() const;          // k = N - m
+  std::span<const double> base_point() const;
+  const mpq_class& tangent(int row, int col) const;  // T
+  const mpq_class& normal(int row, int col) const;   // Nn
+  // G(u, h) = F(p + T u + Nn h): k polynomials in the m + k variables (u, h).
+  const ParametricSystem& chart_system() const;
+
+  // Encloses the piece of M over U, choosing H itself: an approximate h0 at the centre u0 of U
+  // by Newton from `h_hint` (default 0, i.e. from p; pass the h of a neighbouring box), then
+  // H = h0 +- r with r the predicted spread of h over U times `safety`: the larger of the
+  // linear prediction |dh/du| rad U (dh/du = -J_h^{-1} J_u at (u0, h0)) and the distance from h0
+  // of the Newton solutions at the 2^m corners of U (which sees the curvature where the slope
+  // at the centre is 0), plus a floor of 2^-30 (|h0| + rad U) (or 2^-30 |p| when both are 0)
+  // for boxes U of zero width; if Krawczyk cannot decide, r grows by `growth`, up to `attempts`
+  // boxes. Never returns `none` (a root-free guessed H says nothing about M over U).
+  ChartResult enclose(const Box& U, std::span<const double> h_hint = {}) const;
+  // The parametric Krawczyk test on the given H (with its contraction and inflation).
+  ChartResult enclose_in(const Box& U, const Box& H) const;
+  // Interval hull of p + T U + Nn H, outward rounded. False (and X unspecified) on overflow.
+  bool image(const Box& U, const Box& H, Box& X) const;
+
+  struct Impl;
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+};
+
+}  // namespace delcert::exact

@@ -1,0 +1,108 @@
+// The parametric Krawczyk operator (exact/krawczyk.hpp): for every u in U exactly one root in
+// the box, or none, checked against exact roots.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "exact/krawczyk.hpp"
+#include "exact/number_types.hpp"
+#include "support.hpp"
+
+namespace delcert::exact {
+namespace {
+
+using testing::Q;
+
+ParametricSystem parse_parametric(const std::vector<std::string>& eqs, int m) {
+  std::vector<Polynomial> p;
+  for (const auto& e : eqs) p.push_back(Polynomial::parse(e, m + static_cast<int>(eqs.size())));
+  return ParametricSystem(std::move(p), m);
+}
+
+// True when sqrt(s) lies in [lo, hi] (lo >= 0), decided exactly.
+bool sqrt_in(const Interval& i, const Q& s) {
+  const Q lo = to_rational(i.lo), hi = to_rational(i.hi);
+  return lo >= 0 && lo * lo <= s && s <= hi * hi;
+}
+
+TEST(ParametricKrawczyk, SquareRootOverAParameterBox) {
+  // x^2 - u = 0 (variables: u = x1, x = x2).
+  const ParametricSystem S = parse_parametric({"x2^2 - x1"}, 1);
+  EXPECT_EQ(S.size(), 1);
+  EXPECT_EQ(S.num_parameters(), 1);
+  for (double a = 0.25; a < 4; a *= 1.5) {
+    const Box U{{a, a * 1.125}};
+    auto r = krawczyk(S, U, Box{{0.25, 3.0}});
+    ASSERT_EQ(r.status, RootStatus::unique_root) << a;
+    // Krawczyk stops contracting when a step gains little; restarting on its box contracts on.
+    for (int again = 0; again < 6; ++again) {
+      r = krawczyk(S, U, r.box);
+      ASSERT_EQ(r.status, RootStatus::unique_root) << a;
+    }
+    // sqrt(u) lies in the box for every u in U: check the ends and samples exactly.
+    for (int s = 0; s <= 16; ++s) {
+      const Q u = to_rational(a) + to_rational(a * 0.125) * Q(s, 16);
+      EXPECT_TRUE(sqrt_in(r.box[0], u)) << a << " " << s;
+    }
+    // ... and the box is not much wider than the range of sqrt over U (plus rounding).
+    EXPECT_LT(r.box[0].width(), 2.0 * (std::sqrt(a * 1.125) - std::sqrt(a)) + 1e-12);
+  }
+}
+
+TEST(ParametricKrawczyk, NoRootForAnyParameter) {
+  const ParametricSystem S = parse_parametric({"x2^2 - x1"}, 1);
+  // x^2 >= 4 > u on H = [2, 3] for u in [1, 2].
+  EXPECT_EQ(krawczyk(S, Box{{1.0, 2.0}}, Box{{2.0, 3.0}}).status, RootStatus::no_root);
+  // Two unknowns, two parameters: x - u1 = 0, y - u2 = 0 with the parameter box away from H.
+  const ParametricSystem L = parse_parametric({"x3 - x1", "x4 - x2"}, 2);
+  EXPECT_EQ(krawczyk(L, Box{{0.0, 1.0}, {0.0, 1.0}}, Box{{1.5, 2.0}, {0.0, 1.0}}).status, RootStatus::no_root);
+  EXPECT_EQ(krawczyk(L, Box{{0.0, 1.0}, {0.0, 1.0}}, Box{{-0.5, 1.5}, {-0.5, 1.5}}).status, RootStatus::unique_root);
+}
+
+TEST(ParametricKrawczyk, NeverUniqueWhereSomeParameterHasTwoRootsOrNone) {
+  const ParametricSystem S = parse_parametric({"x2^2 - x1"}, 1);
+  // u in [-0.1, 0.1]: no root for u < 0, two roots for u > 0, a double root at 0.
+  for (const Box& H : {Box{{-1.0, 1.0}}, Box{{-0.01, 0.4}}, Box{{0.0, 0.5}}, Box{{-0.5, 0.0}}})
+    EXPECT_NE(krawczyk(S, Box{{-0.1, 0.1}}, H).status, RootStatus::unique_root);
+  // u in [0.01, 0.04] has two roots in [-1, 1] for every u.
+  EXPECT_NE(krawczyk(S, Box{{0.01, 0.04}}, Box{{-1.0, 1.0}}).status, RootStatus::unique_root);
+}
+
+TEST(ParametricKrawczyk, CentredFormIsNeededForWideParameterBoxes) {
+  // x - (u1 - u2) = 0 over a large U with a tight H only works because G(U, c) is enclosed
+  // well; the point is that the answer stays correct: unique exactly when H covers u1 - u2.
+  const ParametricSystem S = parse_parametric({"x3 - x1 + x2"}, 2);
+  const Box U{{1.0, 1.5}, {0.0, 0.25}};  // u1 - u2 in [0.75, 1.5]
+  EXPECT_EQ(krawczyk(S, U, Box{{0.5, 2.0}}).status, RootStatus::unique_root);
+  EXPECT_NE(krawczyk(S, U, Box{{0.8, 2.0}}).status, RootStatus::unique_root);
+  EXPECT_EQ(krawczyk(S, U, Box{{1.6, 2.0}}).status, RootStatus::no_root);
+}
+
+TEST(ParametricKrawczyk, RejectsBadBoxes) {
+  const ParametricSystem S = parse_parametric({"x2^2 - x1"}, 1);
+  EXPECT_THROW(krawczyk(S, Box{}, Box{{0.0, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(krawczyk(S, Box{{1.0, 0.0}}, Box{{0.0, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(krawczyk(S, Box{{0.0, HUGE_VAL}}, Box{{0.0, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(ParametricSystem({Polynomial::parse("x1 - x2", 2)}, 2), std::invalid_argument);
+  EXPECT_THROW(ParametricSystem({Polynomial::parse("x1", 1)}, -1), std::invalid_argument);
+}
+
+TEST(ParametricKrawczyk, HugeAndTinyMagnitudesAreNeverWrong) {
+  // x^2 - u with u ~ 1e-300 (x ~ 1e-150) and u ~ 1e300 (x ~ 1e150): either undecided or a
+  // correct enclosure.
+  const ParametricSystem S = parse_parametric({"x2^2 - x1"}, 1);
+  for (double a : {1e-300, 1e-200, 1e200, 1e300}) {
+    const Box U{{a, a * 1.01}};
+    const double s = std::sqrt(a);
+    const auto r = krawczyk(S, U, Box{{0.5 * s, 2 * s}});
+    if (r.status == RootStatus::unique_root) {
+      EXPECT_TRUE(sqrt_in(r.box[0], to_rational(a)));
+      EXPECT_TRUE(sqrt_in(r.box[0], to_rational(a * 1.01)));
+    }
+    EXPECT_NE(krawczyk(S, U, Box{{-0.5 * s, 0.5 * s}}).status, RootStatus::unique_root);
+  }
+}
+
+}  // namespace
+}  // namespace delcert::exact
