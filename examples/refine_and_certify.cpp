@@ -5,7 +5,7 @@
 //
 // The flat (Clifford) torus in R^4: an eps-net, refined until its tangential Delaunay complex is
 // thick, protected and consistent, then certified with the refiner's own claims. Prints the
-// counts and the verdict; exit status 0 only when the verdict is CERTIFIED. A few seconds.
+// counts and the verdict; exit status 0 only when the verdict is CERTIFIED. Under a second.
 #include <stdlib.h>  // mkdtemp
 
 #include <cstdio>
