@@ -2,6 +2,8 @@
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/gmpxx.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
@@ -175,8 +177,10 @@ struct Reduced {
   bool root_at_lo = false, root_at_hi = false;
 };
 
-Reduced reduce(const UPoly& f, const mpq_class& lo, const std::optional<mpq_class>& hi) {
-  Reduced r{square_free(f)};
+// g = gcd(f, f') when already known.
+Reduced reduce(const UPoly& f, const mpq_class& lo, const std::optional<mpq_class>& hi,
+               const UPoly* g = nullptr) {
+  Reduced r{g ? divmod(f, *g).first : square_free(f)};
   if (r.s.sign_at(lo) == 0) {
     r.root_at_lo = true;
     r.s = divmod(r.s, UPoly::linear(-lo, 1)).first;
@@ -216,13 +220,13 @@ RootAnalysis analyse_roots(const UPoly& f, const mpq_class& lo, const std::optio
     return a;
   }
   if (hi && !(lo < *hi)) throw std::invalid_argument("analyse_roots: empty interval");
-  const Reduced r = reduce(f, lo, hi);
+  const UPoly g = gcd(f, f.derivative());  // its roots are the multiple roots of f
+  const Reduced r = reduce(f, lo, hi, &g);
   const Sturm sturm(r.s);
   a.root_at_lo = r.root_at_lo;
   a.root_at_hi = r.root_at_hi;
   const int interior = sturm.count_open(lo, hi);
   a.distinct_roots = int(r.root_at_lo) + int(r.root_at_hi) + interior;
-  const UPoly g = gcd(f, f.derivative());  // its roots are the multiple roots of f
   a.repeated_root = g.degree() > 0 && count_distinct_roots(g, lo, hi) > 0;
   if (r.root_at_lo) {
     a.isolating = std::pair{lo, lo};
@@ -230,7 +234,7 @@ RootAnalysis analyse_roots(const UPoly& f, const mpq_class& lo, const std::optio
     a.isolating = std::pair{*hi, *hi};
   } else if (interior > 0) {
     // Bisection on (l, h) with s(l), s(h) != 0 and at least one root of s inside, until exactly one.
-    mpq_class l = lo, h = hi ? *hi : std::max(lo + 1, cauchy_bound(r.s));
+    mpq_class l = lo, h = hi ? *hi : std::max(mpq_class(lo + 1), cauchy_bound(r.s));
     while (true) {
       const int n = sturm.count_open(l, h);
       if (n == 1) {
@@ -325,6 +329,33 @@ Vec circumcentre(const Vec& p0, const Vec& p1, const Vec& p2, const Vec& p3) {
   return x;
 }
 
+// A filter that only ever concludes "F has no zero on the segment [A, B]": A and B are enclosed by
+// evaluating the same Cramer formula in interval arithmetic (CGAL::Interval_nt, which rounds
+// outward itself; a division by an interval holding 0 gives an unbounded interval), the segment by
+// the box hull of the two enclosures, and F on that box by interval evaluation (an enclosure of
+// every value of F on the box). If the enclosure excludes 0, so does f on [0, 1]: exact. Otherwise
+// the exact computation decides.
+using I = CGAL::Interval_nt<>;
+using IVec = std::array<I, 3>;
+
+IVec interval_circumcentre(const std::array<std::array<double, 3>, 4>& p) {
+  IVec u, v, w;
+  for (int k = 0; k < 3; ++k) {
+    u[k] = I(p[1][k]) - I(p[0][k]);
+    v[k] = I(p[2][k]) - I(p[0][k]);
+    w[k] = I(p[3][k]) - I(p[0][k]);
+  }
+  const auto icross = [](const IVec& a, const IVec& b) {
+    return IVec{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const auto idot = [](const IVec& a, const IVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const IVec vw = icross(v, w), wu = icross(w, u), uv = icross(u, v);
+  const I det = 2 * idot(u, vw), a = idot(u, u), b = idot(v, v), c = idot(w, w);
+  IVec x;
+  for (int k = 0; k < 3; ++k) x[k] = I(p[0][k]) + (a * vw[k] + b * wu[k] + c * uv[k]) / det;
+  return x;
+}
+
 }  // namespace
 
 RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P, const Polynomial& F) {
@@ -344,6 +375,27 @@ RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P,
 
   RestrictedDelaunayReference out;
   out.finite_cells = dt.number_of_finite_cells();
+  std::vector<I> coefficient_enclosures;
+  for (const auto& term : F.terms()) coefficient_enclosures.emplace_back(CGAL::to_interval(term.coefficient));
+  std::unordered_map<DT::Cell_handle, IVec> interval_centres;
+  const auto interval_centre = [&](DT::Cell_handle c) -> const IVec& {
+    auto it = interval_centres.find(c);
+    if (it == interval_centres.end()) {
+      std::array<std::array<double, 3>, 4> p;
+      for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) p[i][k] = P.point(c->vertex(i)->info())[k];
+      it = interval_centres.emplace(c, interval_circumcentre(p)).first;
+    }
+    return it->second;
+  };
+  const auto certainly_misses = [&](DT::Cell_handle c, DT::Cell_handle nb) {
+    const IVec &a = interval_centre(c), &b = interval_centre(nb);
+    IVec box;
+    for (int k = 0; k < 3; ++k)
+      box[k] = I(std::min(a[k].inf(), b[k].inf()), std::max(a[k].sup(), b[k].sup()));
+    const I value = F.evaluate_with<I>(std::span<const I>(box), [&](std::size_t i) { return coefficient_enclosures[i]; });
+    return CGAL::certainly(value > 0) || CGAL::certainly(value < 0);
+  };
   std::unordered_map<DT::Cell_handle, Vec> centres;
   const auto centre = [&](DT::Cell_handle c) -> const Vec& {
     auto it = centres.find(c);
@@ -386,6 +438,8 @@ RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P,
       e.direction = normal;
       e.ray = true;
     } else {
+      if (certainly_misses(c, nb)) continue;
+      ++out.exact_segments;
       e.start = centre(c);
       e.direction = sub(centre(nb), e.start);
     }

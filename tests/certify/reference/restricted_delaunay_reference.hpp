@@ -27,6 +27,10 @@
 // sign of its leading coefficient). Counting roots of any multiplicity is exactly "the edge meets
 // M", for any M = {F = 0}, closed or not.
 //
+// Before the exact path, an interval filter may prove that F has no zero on a finite Voronoi edge
+// (interval circumcentres, F enclosed on the box hull of the segment): that conclusion is exact too;
+// every other edge is decided exactly.
+//
 // Degenerate cases are reported in a separate list, never decided (each with its reason):
 //   * edge_in_manifold: f is identically zero: the whole Voronoi edge lies in M (this includes a
 //     zero-length edge, two cospherical tetrahedra with a common circumcentre, at a point of M);
@@ -153,6 +157,7 @@ struct RestrictedDelaunayReference {
   std::size_t hull_triangles = 0;             // of which convex hull facets
   std::size_t finite_cells = 0;
   std::size_t cospherical_facets = 0;  // facets whose two cells are cospherical (or cocircular on the hull)
+  std::size_t exact_segments = 0;      // finite Voronoi edges the interval filter left to the exact path
 
   bool decided() const { return degenerate.empty(); }
   std::vector<Triangle> triangles() const;             // of `restricted`
