@@ -59,6 +59,20 @@ UPoly UPoly::monic() const {
   return r;
 }
 
+UPoly UPoly::primitive() const {
+  if (c_.empty()) return *this;
+  mpz_class den = 1, num = 0;
+  for (const auto& c : c_) mpz_lcm(den.get_mpz_t(), den.get_mpz_t(), c.get_den_mpz_t());
+  std::vector<mpz_class> ints;
+  for (const auto& c : c_) {
+    ints.push_back(c.get_num() * (den / c.get_den()));
+    mpz_gcd(num.get_mpz_t(), num.get_mpz_t(), ints.back().get_mpz_t());
+  }
+  std::vector<mpq_class> out;
+  for (const auto& z : ints) out.emplace_back(mpz_class(z / num));
+  return UPoly(std::move(out));
+}
+
 UPoly operator+(const UPoly& a, const UPoly& b) {
   std::vector<mpq_class> c(std::max(a.c_.size(), b.c_.size()));
   for (std::size_t i = 0; i < a.c_.size(); ++i) c[i] += a.c_[i];
@@ -97,7 +111,7 @@ std::pair<UPoly, UPoly> divmod(const UPoly& a, const UPoly& b) {
 
 UPoly gcd(UPoly a, UPoly b) {
   while (!b.is_zero()) {
-    UPoly r = divmod(a, b).second.monic();  // monic keeps the rationals small; the gcd is unchanged
+    UPoly r = divmod(a, b).second.primitive();  // keeps the numbers small; the gcd is unchanged
     a = std::move(b);
     b = std::move(r);
   }
@@ -132,9 +146,8 @@ struct Sturm {
     while (seq.back().degree() > 0) {
       UPoly r = divmod(seq[seq.size() - 2], seq.back()).second;
       if (r.is_zero()) break;
-      const mpq_class scale = abs(r.leading());
-      std::vector<mpq_class> c = r.coefficients();
-      for (auto& x : c) x = -x / scale;
+      std::vector<mpq_class> c = r.primitive().coefficients();  // a positive multiple of r
+      for (auto& x : c) x = -x;
       seq.emplace_back(std::move(c));
     }
   }
@@ -163,7 +176,7 @@ struct Sturm {
   }
 };
 
-UPoly square_free(const UPoly& f) { return divmod(f, gcd(f, f.derivative())).first; }
+UPoly square_free(const UPoly& f) { return divmod(f, gcd(f, f.derivative())).first.primitive(); }
 
 // An upper bound of |t| over the complex roots of f (Cauchy): 1 + max |c_i / c_d|.
 mpq_class cauchy_bound(const UPoly& f) {
@@ -180,7 +193,7 @@ struct Reduced {
 // g = gcd(f, f') when already known.
 Reduced reduce(const UPoly& f, const mpq_class& lo, const std::optional<mpq_class>& hi,
                const UPoly* g = nullptr) {
-  Reduced r{g ? divmod(f, *g).first : square_free(f)};
+  Reduced r{g ? divmod(f, *g).first.primitive() : square_free(f)};
   if (r.s.sign_at(lo) == 0) {
     r.root_at_lo = true;
     r.s = divmod(r.s, UPoly::linear(-lo, 1)).first;
@@ -204,7 +217,8 @@ int count_distinct_roots(const UPoly& f, const mpq_class& lo, const std::optiona
   return int(r.root_at_lo) + int(r.root_at_hi) + Sturm(r.s).count_open(lo, hi);
 }
 
-RootAnalysis analyse_roots(const UPoly& f, const mpq_class& lo, const std::optional<mpq_class>& hi) {
+RootAnalysis analyse_roots(const UPoly& f_in, const mpq_class& lo, const std::optional<mpq_class>& hi) {
+  const UPoly f = f_in.primitive();  // a positive multiple: same roots, same signs
   RootAnalysis a;
   if (f.is_zero()) {
     a.identically_zero = true;

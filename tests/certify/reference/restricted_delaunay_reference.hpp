@@ -96,6 +96,8 @@ class UPoly {
   int sign_at_infinity() const;  // sign of the leading coefficient (0 for zero)
   UPoly derivative() const;
   UPoly monic() const;  // divided by its leading coefficient (zero stays zero)
+  // A positive rational multiple with coprime integer coefficients (same roots, same signs).
+  UPoly primitive() const;
 
   friend UPoly operator+(const UPoly& a, const UPoly& b);
   friend UPoly operator-(const UPoly& a, const UPoly& b);
