@@ -75,6 +75,7 @@ long check_directory(const std::string& dir, const std::vector<std::string>& all
   int files = 0;
   long lines = 0;
   for (const auto& entry : fs::recursive_directory_iterator(fs::path(DELCERT_SOURCE_DIR) / dir)) {
+    if (!entry.is_regular_file()) continue;  // detail/ subfolders are scanned, not read
     const std::string ext = entry.path().extension().string();
     std::ifstream f(entry.path());
     std::string text((std::istreambuf_iterator<char>(f)), {});
