@@ -111,7 +111,7 @@ json run_gudhi(const io::PointSet& ps, const tangential::TangentPlanes& planes, 
   }
 }
 
-json run_delcert(const Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
+json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
                  const std::string& name) {
   refine::RefineParameters p;
   p.threads = threads;
@@ -208,10 +208,10 @@ int main(int argc, char** argv) {
   doc["seed"] = seed;
   json results = json::array();
   for (const Case& c : parse_cases(cases_text)) {
-    Manifold manifold(io::read_spec("builtin:" + c.manifold));
-    Random rng(seed);
+    manifold::Manifold manifold(io::read_spec("builtin:" + c.manifold));
+    sampling::Random rng(seed);
     io::PointSet ps;
-    sample_manifold(manifold, c.count, rng, ps);
+    sampling::sample_manifold(manifold, c.count, rng, ps);
     auto planes = tangential::compute_tangent_planes(manifold, ps, threads);
     json e;
     e["manifold"] = c.manifold;

@@ -57,10 +57,10 @@ struct Input {
 };
 
 Input make_input(const Case& c, std::uint64_t seed) {
-  Manifold manifold(io::read_spec("builtin:" + c.manifold));
-  Random random(seed);
+  manifold::Manifold manifold(io::read_spec("builtin:" + c.manifold));
+  sampling::Random random(seed);
   Input in;
-  sample_manifold(manifold, c.count, random, in.points);
+  sampling::sample_manifold(manifold, c.count, random, in.points);
   in.planes = tangential::compute_tangent_planes(manifold, in.points, 1);
   in.m = manifold.intrinsic_dimension();
   in.N = manifold.ambient_dimension();

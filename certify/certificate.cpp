@@ -154,7 +154,7 @@ json lower_bound_json(const exact::Interval& iv) {
 }
 
 json rational_json(const mpq_class& q) {
-  std::string s = rational_to_string(q);
+  std::string s = exact::rational_to_string(q);
   if (s.size() <= 40) return s;
   return {{"enclosure", enclosure_json(exact::enclose(q))}};
 }

@@ -8,10 +8,10 @@
 #include <optional>
 #include <set>
 
-#include "certify/grid.hpp"
-#include "certify/parallel.hpp"
+#include "certify/detail/grid.hpp"
+#include "certify/detail/parallel.hpp"
 #include "certify/sanity.hpp"
-#include "certify/sha256.hpp"
+#include "certify/detail/sha256.hpp"
 #include "certify/star.hpp"
 #include "certify/theorem.hpp"
 #include "certify/thickness.hpp"
@@ -144,13 +144,13 @@ Inputs read_inputs(const CertifyOptions& o) {
 // The certificate's "inputs": what was read, with the SHA-256 of the bytes parsed.
 json inputs_json(const Inputs& in, const CertifyOptions& o) {
   json j;
-  j["manifold"] = {{"source", o.manifold}, {"name", in.spec.name}, {"sha256", Sha256::hex(in.spec_text)},
+  j["manifold"] = {{"source", o.manifold}, {"name", in.spec.name}, {"sha256", detail::Sha256::hex(in.spec_text)},
                    {"intrinsic_dimension", in.spec.intrinsic_dimension}, {"ambient_dimension", in.spec.ambient_dimension}};
-  j["points"] = {{"path", o.points}, {"sha256", Sha256::hex(in.points_text)}, {"count", in.points.size()}};
-  j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", Sha256::hex(in.complex_text)},
+  j["points"] = {{"path", o.points}, {"sha256", detail::Sha256::hex(in.points_text)}, {"count", in.points.size()}};
+  j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", detail::Sha256::hex(in.complex_text)},
                                  {"simplices", in.given->simplices.size()}}
                           : json(nullptr);
-  j["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", Sha256::hex(in.claims_text)}};
+  j["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", detail::Sha256::hex(in.claims_text)}};
   return j;
 }
 
@@ -173,10 +173,10 @@ json conventions_json() {
 json parameters_json(const Inputs& in) {
   json params = json::object();
   const io::Claims& claims = in.claims;
-  if (claims.eps) params["eps"] = rational_to_string(*claims.eps);
-  if (claims.sparsity) params["sparsity"] = rational_to_string(*claims.sparsity);
-  if (claims.gamma0) params["gamma0"] = rational_to_string(*claims.gamma0);
-  if (claims.power_protection) params["power_protection"] = rational_to_string(*claims.power_protection);
+  if (claims.eps) params["eps"] = exact::rational_to_string(*claims.eps);
+  if (claims.sparsity) params["sparsity"] = exact::rational_to_string(*claims.sparsity);
+  if (claims.gamma0) params["gamma0"] = exact::rational_to_string(*claims.gamma0);
+  if (claims.power_protection) params["power_protection"] = exact::rational_to_string(*claims.power_protection);
   return {{"mode", in.given ? "verify the given complex" : "audit: compute Del_TM(P)"}, {"claims", params}};
 }
 
@@ -209,7 +209,7 @@ Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings&
       for (int v : s) st.claimed[v].push_back(s);
     }
   st.reports.resize(n);
-  parallel_for(n, threads, [&](std::size_t p, int w) {
+  detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &st.claimed[p] : nullptr, ctx[w]);
   });
   st.complex.num_vertices = n;
@@ -378,12 +378,12 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
   }
   prot.details = {{"star_cells", R.cells}, {"exact_ties", ties}, {"below_claim", below_claim}};
   if (claim)
-    prot.claim = {{"power_protection", rational_to_string(*claim)},
+    prot.claim = {{"power_protection", exact::rational_to_string(*claim)},
                   {"meaning", "|c_p(s) - q|^2 - R_p(s)^2 > power_protection for every star simplex s at p and q not in s"}};
   prot.summary = "min power margin >= " + num(min_margin.lo) + " (enclosure [" + num(min_margin.lo) + ", " +
                  num(min_margin.hi) + "]) over " + std::to_string(R.cells) + " star cells; " + std::to_string(ties) +
                  " exact ties" +
-                 (claim ? "; " + std::to_string(below_claim) + " not above the claim " + rational_to_string(*claim) : "");
+                 (claim ? "; " + std::to_string(below_claim) + " not above the claim " + exact::rational_to_string(*claim) : "");
   return R;
 }
 
@@ -428,12 +428,12 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   }
   radius.details = {{"star_cells", R.cells}, {"not_below_eps", too_big}};
   if (eps) {
-    radius.claim = {{"eps", rational_to_string(*eps)}, {"meaning", "R_p(s) < eps for every star simplex"}};
+    radius.claim = {{"eps", exact::rational_to_string(*eps)}, {"meaning", "R_p(s) < eps for every star simplex"}};
   } else if (radius.verdict == Verdict::certified) {
     radius.verdict = Verdict::report;
   }
   radius.summary = "max R_p(s)^2 <= " + num(max_r2.hi) +
-                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= eps = " + rational_to_string(*eps)
+                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= eps = " + exact::rational_to_string(*eps)
                         : " (no eps claim)");
   return R;
 }
@@ -493,7 +493,7 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   SecureParams sp{tp.eps, tp.delta, tp.upsilon0, tp.shortest, {}, {}, {}, {}};
   sp.prepare();
   std::vector<SecureReport> sr(n);
-  parallel_for(n, threads, [&](std::size_t p, int w) {
+  detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     if (reports[p].state != StarReport::State::proven) return;
     std::vector<Simplex> st;
     for (const auto& c : reports[p].star) st.push_back(c.simplex);
@@ -547,7 +547,7 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(check_input_sanity(spec, P, in.point_lines, o.points, threads));
   watch.record(C, "input_sanity");
   const exact::ImplicitSystem system(spec.equations, N);
-  const PointGrid grid(P, m);
+  const detail::PointGrid grid(P, m);
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "certify/grid.hpp"
-#include "certify/parallel.hpp"
+#include "certify/detail/grid.hpp"
+#include "certify/detail/parallel.hpp"
 #include "exact/manifold_distance.hpp"
 #include "exact/number_types.hpp"
 #include "exact/simplex_predicates.hpp"
@@ -68,7 +68,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                               const std::string& file, int threads) {
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension, k = N - m;
   const std::size_t n = points.size();
-  std::vector<std::vector<Polynomial>> jac(k);
+  std::vector<std::vector<exact::Polynomial>> jac(k);
   for (int i = 0; i < k; ++i)
     for (int v = 0; v < N; ++v) jac[i].push_back(spec.equations[i].derivative(v));
   auto line_of = [&](std::size_t i) { return i < lines.size() ? lines[i] : 0L; };
@@ -79,7 +79,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
   for (double c : points.coordinates) magnitude = std::max(magnitude, std::abs(c));
   const int scale_exponent = magnitude > 0 && std::isfinite(magnitude) ? std::ilogb(magnitude) : 0;
   const exact::ManifoldDistance to_M(spec.equations, N, spec.selector ? &*spec.selector : nullptr, scale_exponent);
-  parallel_for(n, threads, [&](std::size_t idx, int) {
+  detail::parallel_for(n, threads, [&](std::size_t idx, int) {
     std::vector<mpq_class> x = exact::to_rational(points.point(idx));
     for (int i = 0; i < k; ++i) {
       mpq_class f = abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)));
@@ -87,7 +87,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
         throw io::InputError(file, line_of(idx),
                              "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
                                  "(p)| is about " + num(f.get_d()) + " > residual_tolerance " +
-                                 rational_to_string(spec.residual_tolerance) +
+                                 exact::rational_to_string(spec.residual_tolerance) +
                                  " (exactly); project the point onto M or raise residual_tolerance in the spec");
       if (f > worst[idx]) worst[idx] = f;
     }
@@ -126,7 +126,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
     if (distance[i] > distance[far]) far = i;
   const double maxdist = n ? distance[far] : 0.0;
   e.summary = std::to_string(n) + " distinct points in R^" + std::to_string(N) + ", max |F_i(p)| <= " +
-              num(exact::enclose(maxres).hi) + " (tolerance " + rational_to_string(spec.residual_tolerance) +
+              num(exact::enclose(maxres).hi) + " (tolerance " + exact::rational_to_string(spec.residual_tolerance) +
               "), every point within " + num(maxdist) + " of M (certified), full-rank Jacobian there";
   e.margin = {{"max_residual", {{"certified_upper_bound", num(exact::enclose(maxres).hi)},
                                 {"enclosure", enclosure_json(exact::enclose(maxres))}}},
@@ -135,7 +135,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
   e.details = {{"points", n},
                {"ambient_dimension", N},
                {"intrinsic_dimension", m},
-               {"residual_tolerance", rational_to_string(spec.residual_tolerance)},
+               {"residual_tolerance", exact::rational_to_string(spec.residual_tolerance)},
                {"selector", spec.selector ? json(spec.selector_text) : json(nullptr)},
                {"jacobian_full_rank_everywhere", true},
                {"distance_to_M",
@@ -147,7 +147,7 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
   return e;
 }
 
-SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid, const mpq_class* claim,
+SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGrid& grid, const mpq_class* claim,
                               exact::FilterContext& ctx) {
   SparsityResult R;
   CheckEntry& e = R.entry;
@@ -198,17 +198,17 @@ SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid,
     e.verdict = Verdict::report;
     e.summary += " (no sparsity claim)";
   } else {
-    e.claim = {{"sparsity", rational_to_string(*claim)}, {"meaning", "every two points at distance > sparsity"}};
+    e.claim = {{"sparsity", exact::rational_to_string(*claim)}, {"meaning", "every two points at distance > sparsity"}};
     e.require_at_least("min_distance", dist.lo, *claim);
     if (R.min_squared > *claim * *claim) {
-      e.summary += " > claimed " + rational_to_string(*claim);
+      e.summary += " > claimed " + exact::rational_to_string(*claim);
     } else {
       e.refute("two points are not farther apart than the claimed sparsity");
       e.add_witness({{"pair", {R.i, R.j}},
                      {"squared_distance", rational_json(R.min_squared)},
                      {"claim_squared", rational_json(*claim * *claim)},
                      {"sign", "squared_distance - claim^2 <= 0"}});
-      e.summary += ": NOT > claimed " + rational_to_string(*claim);
+      e.summary += ": NOT > claimed " + exact::rational_to_string(*claim);
     }
   }
   return R;

@@ -21,7 +21,9 @@
 
 namespace delcert::certify {
 
+namespace detail {
 class PointGrid;
+}  // namespace detail
 
 // Throws io::InputError naming the points file and the point's line (lines[i], from
 // io::parse_points_file; no line for i >= lines.size()) for a point off M (beyond the
@@ -37,7 +39,7 @@ struct SparsityResult {
   mpq_class min_squared;  // exact
   int i = -1, j = -1;
 };
-SparsityResult check_sparsity(const io::PointSet& points, const PointGrid& grid, const mpq_class* claim,
+SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGrid& grid, const mpq_class* claim,
                               exact::FilterContext& ctx);
 
 }  // namespace delcert::certify

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "certify/grid.hpp"
+#include "certify/detail/grid.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"

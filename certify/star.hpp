@@ -11,7 +11,7 @@
 // Verifying a claimed star (what "the claimed star is the true star" means):
 //   (a) every claimed cell has a strictly empty ball: sign(|c - q|^2 - R^2) > 0 for every
 //       sample point q outside the cell. Sufficiency of the tested set: it contains every point
-//       within distance r of p (grid.hpp), and r >= 2R for every cell, while a point inside
+//       within distance r of p (detail/grid.hpp), and r >= 2R for every cell, while a point inside
 //       B(c, R) is at distance < |q - c| + |c - p| < 2R from p.
 //   (b) the link of p closes: every ridge {p} + (m-1 link vertices) lies in exactly two cells.
 // (a) proves each cell is a cell of the regular triangulation (so the cells have disjoint
@@ -40,13 +40,16 @@
 
 namespace delcert::certify {
 
+namespace detail {
 class PointGrid;
+}  // namespace detail
+
 using Simplex = std::vector<int>;  // sorted global vertex indices
 
 struct StarSettings {
   const io::PointSet* points = nullptr;
   const exact::ImplicitSystem* system = nullptr;
-  const PointGrid* grid = nullptr;
+  const detail::PointGrid* grid = nullptr;
   int m = 0;
   std::optional<mpq_class> power_protection;  // claimed delta-check^2 (a squared distance)
   std::optional<mpq_class> eps;               // claimed eps: every R_p(s) < eps

@@ -28,11 +28,11 @@ std::string enc(const exact::Enclosure& e) { return e.to_string(6); }
 }  // namespace
 
 json TheoremParams::json_parameters() const {
-  return {{"eps", rational_to_string(eps)},
+  return {{"eps", exact::rational_to_string(eps)},
           {"eps_source", eps_measured ? "measured: the smallest double above every certified R_p(s)" : "claim (certified)"},
-          {"lambda", rational_to_string(lambda)},
-          {"upsilon0_tilde", rational_to_string(upsilon)},
-          {"delta_check_squared", rational_to_string(protection_capped)},
+          {"lambda", exact::rational_to_string(lambda)},
+          {"upsilon0_tilde", exact::rational_to_string(upsilon)},
+          {"delta_check_squared", exact::rational_to_string(protection_capped)},
           {"delta", enc(exact::Enclosure(delta))},
           {"upsilon0", enc(exact::Enclosure(upsilon0))},
           {"mu0_eps", enc(exact::Enclosure(shortest))}};

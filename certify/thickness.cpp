@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "certify/parallel.hpp"
+#include "certify/detail/parallel.hpp"
 #include "certify/topology.hpp"
 #include "exact/number_types.hpp"
 #include "exact/polynomial.hpp"
@@ -98,7 +98,7 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
       mpq_class g2 = 1;
       for (int k = 0; k < 2 * j; ++k) g2 *= *gamma0;  // Gamma0^(2j): Upsilon >= Gamma0^j, squared
       exact::RationalConstant gc(g2);
-      parallel_for(n, threads, [&](std::size_t f, int t) {
+      detail::parallel_for(n, threads, [&](std::size_t f, int t) {
         auto v = vertex_pointers(P, faces + f * (j + 1), j);
         thin[j][f] = exact::thickness_sign(v, N, gc, ctx[t]) < 0;
       });
@@ -107,7 +107,7 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
     // Certified minimum: guess the thinnest face in floating point, take its exact Upsilon^2,
     // and prove every face thicker than slightly less than that (one predicate per face).
     std::vector<double> approx(n);
-    parallel_for(n, threads, [&](std::size_t f, int) { approx[f] = approx_thickness2(P, faces + f * (j + 1), j); });
+    detail::parallel_for(n, threads, [&](std::size_t f, int) { approx[f] = approx_thickness2(P, faces + f * (j + 1), j); });
     std::size_t arg = std::min_element(approx.begin(), approx.end()) - approx.begin();
     exact::Interval best{0, 0};
     for (int round = 0; round < 8 && n; ++round) {
@@ -116,7 +116,7 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
       double lo = enc.lo * (1 - 0x1p-20);  // a double: an exact rational threshold below Upsilon(arg)^2
       exact::RationalConstant thr{exact::to_rational(lo)};
       std::vector<char> below(n, 0);
-      parallel_for(n, threads, [&](std::size_t f, int t) {
+      detail::parallel_for(n, threads, [&](std::size_t f, int t) {
         if (f != arg) below[f] = exact::thickness_sign(vertex_pointers(P, faces + f * (j + 1), j), N, thr, ctx[t]) <= 0;
       });
       auto it = std::find(below.begin(), below.end(), 1);
@@ -151,7 +151,7 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
     e.summary = mins + " (no gamma0 claim)";
     return R;
   }
-  e.claim = {{"gamma0", rational_to_string(*gamma0)},
+  e.claim = {{"gamma0", exact::rational_to_string(*gamma0)},
              {"meaning", "every j-face t of every simplex has Upsilon(t) >= gamma0^j (gamma0-good)"}};
   // Flakes: thin faces whose proper faces (of dimension >= 2) are all thick enough.
   long flakes = 0;
@@ -191,7 +191,7 @@ ThicknessResult check_thickness(const io::PointSet& P, const FaceLattice& L, int
     e.refute("a face is thinner than gamma0^j");
     e.summary = std::to_string(thin_count) + " face(s) thinner than gamma0^j (" + std::to_string(flakes) + " flakes); " + mins;
   } else {
-    e.summary = "every simplex is gamma0-good for gamma0 = " + rational_to_string(*gamma0) + "; " + mins;
+    e.summary = "every simplex is gamma0-good for gamma0 = " + exact::rational_to_string(*gamma0) + "; " + mins;
   }
   return R;
 }

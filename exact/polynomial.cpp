@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <sstream>
 
-namespace delcert {
+namespace delcert::exact {
 
 mpq_class parse_rational(std::string_view text) {
   auto fail = [&] { throw std::invalid_argument("not a rational number: '" + std::string(text) + "'"); };
@@ -599,4 +599,4 @@ double DoublePolynomial::operator()(std::span<const double> x) const {
   return sum;
 }
 
-}  // namespace delcert
+}  // namespace delcert::exact

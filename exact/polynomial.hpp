@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-namespace delcert {
+namespace delcert::exact {
 
 // A parse error carries the 0-based character offset where the problem was found.
 struct PolynomialParseError : std::runtime_error {
@@ -156,4 +156,4 @@ class DoublePolynomial {
   std::vector<std::uint32_t> exponents_;  // #terms by #vars, row-major
 };
 
-}  // namespace delcert
+}  // namespace delcert::exact

@@ -131,31 +131,31 @@ inline bool polynomial(const std::string& data) {
   }
   bool accepted = false;
   try {
-    mpq_class q = parse_rational(text);
+    mpq_class q = exact::parse_rational(text);
     accepted = true;
-    mpq_class back = detail::round_trip("rational", [&] { return parse_rational(rational_to_string(q)); });
+    mpq_class back = detail::round_trip("rational", [&] { return exact::parse_rational(exact::rational_to_string(q)); });
     if (back != q) throw RoundTripError("rational: rational_to_string round trip changed the value");
   } catch (const std::invalid_argument&) {
   }
   try {
-    Polynomial p = Polynomial::parse(text, n);
+    exact::Polynomial p = exact::Polynomial::parse(text, n);
     accepted = true;
     const std::string written = p.to_string();
-    if (written.size() > PolynomialLimits::max_text_length) {
+    if (written.size() > exact::PolynomialLimits::max_text_length) {
       // The expansion is longer than the text limit: the reader must refuse it (documented error),
       // and there is nothing to compare.
       bool refused = false;
       try {
-        Polynomial::parse(written, n);
-      } catch (const PolynomialParseError&) {
+        exact::Polynomial::parse(written, n);
+      } catch (const exact::PolynomialParseError&) {
         refused = true;
       }
       if (!refused) throw RoundTripError("polynomial: a written text beyond the text limit was accepted");
       return accepted;
     }
-    Polynomial back = detail::round_trip("polynomial", [&] { return Polynomial::parse(written, n); });
+    exact::Polynomial back = detail::round_trip("polynomial", [&] { return exact::Polynomial::parse(written, n); });
     if (!(back == p)) throw RoundTripError("polynomial: to_string round trip changed the polynomial");
-  } catch (const PolynomialParseError&) {
+  } catch (const exact::PolynomialParseError&) {
   }
   return accepted;
 }

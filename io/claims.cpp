@@ -7,7 +7,7 @@
 #include "exact/polynomial.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "io/strict_json.hpp"
+#include "io/detail/strict_json.hpp"
 
 namespace delcert::io {
 
@@ -15,7 +15,7 @@ Claims parse_claims(const std::string& text, const std::string& file) {
   using nlohmann::json;
   // Strict: a repeated key is refused (a DOM keeps the last one silently), every number is read
   // as written, and every message names the line.
-  const StrictJson doc = StrictJson::parse(text, file);
+  const detail::StrictJson doc = detail::StrictJson::parse(text, file);
   const json& j = doc.root();
   if (!j.is_object()) throw InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v1\", ...}");
   if (!j.contains("format") || j.at("format") != "delcert-claims v1")
@@ -40,7 +40,7 @@ Claims parse_claims(const std::string& text, const std::string& file) {
       q = mpq_class(*z);  // a JSON integer, exactly as written, of any size
     } else if (v.is_string()) {
       try {
-        q = parse_rational(v.get<std::string>());
+        q = exact::parse_rational(v.get<std::string>());
       } catch (const std::invalid_argument& e) {
         throw InputError(file, line, "claim '" + key + "': " + e.what());
       }
@@ -65,7 +65,7 @@ std::string format_claims(const Claims& c) {
   const std::pair<const char*, const std::optional<mpq_class>*> keys[] = {
       {"eps", &c.eps}, {"sparsity", &c.sparsity}, {"gamma0", &c.gamma0}, {"power_protection", &c.power_protection}};
   for (const auto& [key, value] : keys)
-    if (*value) j[key] = rational_to_string(**value);
+    if (*value) j[key] = exact::rational_to_string(**value);
   return j.dump(2) + "\n";
 }
 

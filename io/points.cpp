@@ -8,7 +8,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "io/text_lines.hpp"
+#include "io/detail/text_lines.hpp"
 
 namespace delcert::io {
 

@@ -8,7 +8,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/points.hpp"
-#include "io/strict_json.hpp"
+#include "io/detail/strict_json.hpp"
 
 namespace delcert::io {
 
@@ -19,7 +19,7 @@ namespace {
 // Every message names the file and the line of the field (StrictJson keeps the lines).
 struct Ctx {
   const std::string& file;
-  const StrictJson& doc;
+  const detail::StrictJson& doc;
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     throw InputError(file, doc.line(field), "field '" + field + "': " + what);
   }
@@ -32,14 +32,14 @@ void only_keys(const json& obj, const std::string& field, std::initializer_list<
     if (std::any_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) continue;
     std::string list;
     for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-    const std::string path = json_member_path(field, it.key());
+    const std::string path = detail::json_member_path(field, it.key());
     throw InputError(c.file, c.doc.key_line(path),
                      "unknown key '" + path + "'" + (list.empty() ? "" : "; known here: " + list));
   }
 }
 
 const json& require(const json& obj, const char* key, const Ctx& c, const std::string& parent = "") {
-  if (!obj.contains(key)) c.fail(json_member_path(parent, key), "missing; it is required");
+  if (!obj.contains(key)) c.fail(detail::json_member_path(parent, key), "missing; it is required");
   return obj.at(key);
 }
 
@@ -60,7 +60,7 @@ mpq_class get_rational(const json& v, const std::string& field, const Ctx& c) {
     if (auto z = c.doc.integer(field)) return mpq_class(*z);
   } else if (v.is_string()) {
     try {
-      return parse_rational(v.get<std::string>());
+      return exact::parse_rational(v.get<std::string>());
     } catch (const std::invalid_argument& e) {
       c.fail(field, e.what());
     }
@@ -72,7 +72,7 @@ std::vector<mpq_class> get_rationals(const json& v, const std::string& field, co
   if (!v.is_array() || (n && v.size() != n))
     c.fail(field, "expected an array of " + (n ? std::to_string(n) + " " : std::string()) + "rationals");
   std::vector<mpq_class> out;
-  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(get_rational(v[i], json_element_path(field, i), c));
+  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(get_rational(v[i], detail::json_element_path(field, i), c));
   return out;
 }
 
@@ -81,13 +81,13 @@ std::string get_string(const json& v, const std::string& field, const Ctx& c) {
   return v.get<std::string>();
 }
 
-Polynomial get_polynomial(const json& v, const std::string& field, int n, const Ctx& c) {
+exact::Polynomial get_polynomial(const json& v, const std::string& field, int n, const Ctx& c) {
   if (!v.is_string()) c.fail(field, "expected a polynomial as a string, found " + v.dump());
   std::string text = v.get<std::string>();
   std::string shown = text.size() > 200 ? text.substr(0, 200) + "..." : text;
   try {
-    return Polynomial::parse(text, n);
-  } catch (const PolynomialParseError& e) {
+    return exact::Polynomial::parse(text, n);
+  } catch (const exact::PolynomialParseError& e) {
     c.fail(field, std::string(e.what()) + " at character " + std::to_string(e.offset + 1) + " of \"" + shown + "\"");
   } catch (const std::overflow_error& e) {  // not reachable within PolynomialLimits; never wrap
     c.fail(field, std::string("polynomial too large: ") + e.what());
@@ -96,8 +96,8 @@ Polynomial get_polynomial(const json& v, const std::string& field, int n, const 
 
 ShapeSpec get_shape(const json& v, const std::string& field, const char* kind_key, const ManifoldSpec& s, const Ctx& c) {
   if (!v.is_object()) c.fail(field, "expected an object");
-  const std::string kind = get_string(require(v, kind_key, c, field), json_member_path(field, kind_key), c);
-  auto at = [&](const char* key) { return json_member_path(field, key); };
+  const std::string kind = get_string(require(v, kind_key, c, field), detail::json_member_path(field, kind_key), c);
+  auto at = [&](const char* key) { return detail::json_member_path(field, key); };
   ShapeSpec sh;
   const int N = s.ambient_dimension, m = s.intrinsic_dimension;
   if (kind == "sphere") {
@@ -137,7 +137,7 @@ ShapeSpec get_shape(const json& v, const std::string& field, const char* kind_ke
 }  // namespace
 
 ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
-  const StrictJson doc = StrictJson::parse(text, source);
+  const detail::StrictJson doc = detail::StrictJson::parse(text, source);
   const json& j = doc.root();
   Ctx c{source, doc};
   if (!j.is_object()) c.fail("(top level)", "expected a JSON object");
@@ -161,7 +161,7 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
     c.fail("equations", "has " + std::to_string(eq.size()) + " equations but a " + std::to_string(m) +
                             "-manifold in R^" + std::to_string(N) + " needs N - m = " + std::to_string(N - m));
   for (std::size_t i = 0; i < eq.size(); ++i) {
-    const std::string f = json_element_path("equations", i);
+    const std::string f = detail::json_element_path("equations", i);
     s.equations.push_back(get_polynomial(eq[i], f, N, c));
     s.equation_text.push_back(eq[i].get<std::string>());
     if (s.equations.back().is_constant()) c.fail(f, "is constant; every equation must involve the coordinates");
@@ -181,7 +181,7 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
     std::string t = rs.text;
     bool is_sqrt = t.rfind("sqrt(", 0) == 0 && t.size() > 6 && t.back() == ')';
     try {
-      mpq_class q = parse_rational(is_sqrt ? t.substr(5, t.size() - 6) : t);
+      mpq_class q = exact::parse_rational(is_sqrt ? t.substr(5, t.size() - 6) : t);
       rs.squared = is_sqrt ? q : mpq_class(q * q);
       if (q <= 0) c.fail("reach.value", "must be positive");
     } catch (const std::invalid_argument& e) {
@@ -200,7 +200,7 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
     if (!b.is_array() || static_cast<int>(b.size()) != N)
       c.fail("bounding_box", "expected " + std::to_string(N) + " intervals [lo, hi]");
     for (std::size_t i = 0; i < b.size(); ++i) {
-      const std::string f = json_element_path("bounding_box", i);
+      const std::string f = detail::json_element_path("bounding_box", i);
       auto iv = get_rationals(b[i], f, c, 2);
       if (!(iv[0] < iv[1])) c.fail(f, "needs lo < hi");
       s.bounding_box.emplace_back(iv[0].get_d(), iv[1].get_d());
@@ -222,9 +222,9 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
     for (auto [key, dst] : {std::pair{"betti_z2", &s.expected.betti_z2}, std::pair{"betti_z3", &s.expected.betti_z3}}) {
       if (!e.contains(key)) continue;
       const json& a = e.at(key);
-      std::string f = json_member_path("expected", key);
+      std::string f = detail::json_member_path("expected", key);
       if (!a.is_array() || static_cast<int>(a.size()) != m + 1) c.fail(f, "expected m + 1 integers");
-      for (std::size_t i = 0; i < a.size(); ++i) dst->push_back(get_int(a[i], json_element_path(f, i), c, 0, big));
+      for (std::size_t i = 0; i < a.size(); ++i) dst->push_back(get_int(a[i], detail::json_element_path(f, i), c, 0, big));
     }
   }
   if (!s.parametrization && s.bounding_box.empty())

@@ -56,8 +56,8 @@ struct ManifoldSpec {
   int intrinsic_dimension = 0;  // m
   int ambient_dimension = 0;    // N
   std::vector<std::string> equation_text;
-  std::vector<Polynomial> equations;  // N - m of them
-  std::optional<Polynomial> selector;  // component where selector > 0
+  std::vector<exact::Polynomial> equations;  // N - m of them
+  std::optional<exact::Polynomial> selector;  // component where selector > 0
   std::string selector_text;
   std::optional<ReachSpec> reach;
   std::optional<ShapeSpec> metric;

@@ -96,7 +96,7 @@ int run_refine(const RefineArgs& a) {
     for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"}) outs.push_back((fs::path(a.out) / f).string());
     for (const auto& o : outs) io::check_output_path(o, "--out", {a.manifold, a.points}, {}, true);
   }
-  Manifold manifold(io::read_spec(a.manifold));
+  manifold::Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
     throw io::InputError(manifold.spec().source, 0,
@@ -118,14 +118,14 @@ int run_refine(const RefineArgs& a) {
     io::PointReadOptions ro;
     ro.expected_dimension = N;
     input = io::read_points(a.points, ro);
-    check_on_manifold(manifold, input, a.points);
+    manifold::check_on_manifold(manifold, input, a.points);
     input_text = a.points;
   } else {
-    EpsNetOptions eo;
+    sampling::EpsNetOptions eo;
     eo.eps = refine::as_doubles(params.constants).eps;
     eo.seed = a.seed;
-    auto net = eps_net(manifold, eo);
-    check_sample_on_manifold(manifold, net.points, a.manifold);
+    auto net = sampling::eps_net(manifold, eo);
+    manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
     input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text + " --seed " + std::to_string(a.seed) + ")";
   }

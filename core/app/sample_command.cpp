@@ -19,13 +19,13 @@ struct SampleArgs {
 };
 
 int run_sample(const SampleArgs& a) {
-  Manifold manifold(io::read_spec(a.manifold));
-  EpsNetOptions options;
+  manifold::Manifold manifold(io::read_spec(a.manifold));
+  sampling::EpsNetOptions options;
   options.eps = a.eps;
   options.seed = a.seed;
   io::check_output_path(a.out, "--out", {a.manifold});
-  auto net = eps_net(manifold, options);
-  check_sample_on_manifold(manifold, net.points, a.manifold);
+  auto net = sampling::eps_net(manifold, options);
+  manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
   io::write_points(a.out, net.points);
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), manifold.intrinsic_dimension(),
               manifold.ambient_dimension());

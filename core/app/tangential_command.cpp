@@ -58,7 +58,7 @@ int run_tangential(const TangentialArgs& a) {
   // or nothing: a bad --stats must not leave a fresh --out behind.
   io::check_output_path(a.out, "--out", {a.manifold, a.points}, {a.stats});
   if (!a.stats.empty()) io::check_output_path(a.stats, "--stats", {a.manifold, a.points}, {a.out});
-  Manifold manifold(io::read_spec(a.manifold));
+  manifold::Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
     throw io::InputError(manifold.spec().source, 0,
@@ -67,7 +67,7 @@ int run_tangential(const TangentialArgs& a) {
   io::PointReadOptions read_options;
   read_options.expected_dimension = N;
   io::PointSet points = io::read_points(a.points, read_options);
-  check_on_manifold(manifold, points, a.points);
+  manifold::check_on_manifold(manifold, points, a.points);
   times["read"] = clock.lap();
 
   const int threads = support::resolve_threads(a.threads);

@@ -4,14 +4,14 @@
 
 #include <cmath>
 
-namespace delcert {
+namespace delcert::manifold {
 
 Manifold::Manifold(io::ManifoldSpec spec) : spec_(std::move(spec)) {
   m_ = spec_.intrinsic_dimension;
   N_ = spec_.ambient_dimension;
   for (const auto& f : spec_.equations) {
     f_.emplace_back(f);
-    std::vector<DoublePolynomial> row;
+    std::vector<exact::DoublePolynomial> row;
     for (int j = 0; j < N_; ++j) row.emplace_back(f.derivative(j));
     df_.push_back(std::move(row));
   }
@@ -103,4 +103,4 @@ std::optional<Eigen::VectorXd> Manifold::project(std::span<const double> x0, con
   return z;
 }
 
-}  // namespace delcert
+}  // namespace delcert::manifold

@@ -14,7 +14,7 @@
 #include "exact/polynomial.hpp"
 #include "io/spec.hpp"
 
-namespace delcert {
+namespace delcert::manifold {
 
 // Orthonormal frame at a point: tangent is N by m, normal is N by (N - m); together an
 // orthonormal basis of R^N with span(tangent) = ker J_F(p).
@@ -65,13 +65,13 @@ class Manifold {
  private:
   io::ManifoldSpec spec_;
   int m_ = 0, N_ = 0;
-  std::vector<DoublePolynomial> f_;
-  std::vector<std::vector<DoublePolynomial>> df_;  // df_[i][j] = dF_i / dx_j
-  std::optional<DoublePolynomial> selector_;
+  std::vector<exact::DoublePolynomial> f_;
+  std::vector<std::vector<exact::DoublePolynomial>> df_;  // df_[i][j] = dF_i / dx_j
+  std::optional<exact::DoublePolynomial> selector_;
 };
 
 inline std::span<const double> as_span(const Eigen::VectorXd& v) {
   return {v.data(), static_cast<std::size_t>(v.size())};
 }
 
-}  // namespace delcert
+}  // namespace delcert::manifold

@@ -4,7 +4,7 @@
 
 #include "io/input_error.hpp"
 
-namespace delcert {
+namespace delcert::manifold {
 
 void check_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& path) {
   const double tolerance = manifold.spec().residual_tolerance.get_d();
@@ -46,4 +46,4 @@ void check_sample_on_manifold(const Manifold& manifold, const io::PointSet& poin
   }
 }
 
-}  // namespace delcert
+}  // namespace delcert::manifold

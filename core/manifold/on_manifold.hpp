@@ -7,7 +7,7 @@
 #include "core/manifold/manifold.hpp"
 #include "io/points.hpp"
 
-namespace delcert {
+namespace delcert::manifold {
 
 // Rejects input points that are not on M to the spec's residual tolerance, or are on a component
 // the spec's selector excludes: their tangent flat would mean nothing. Throws io::InputError
@@ -19,4 +19,4 @@ void check_on_manifold(const Manifold& manifold, const io::PointSet& points, con
 // Throws io::InputError naming the spec; the caller has written nothing yet.
 void check_sample_on_manifold(const Manifold& manifold, const io::PointSet& points, const std::string& spec_path);
 
-}  // namespace delcert
+}  // namespace delcert::manifold

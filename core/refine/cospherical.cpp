@@ -15,7 +15,7 @@ double shortest_edge2(const io::PointSet& points, std::span<const int> cell) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t a = 0; a < cell.size(); ++a)
     for (std::size_t b = a + 1; b < cell.size(); ++b)
-      best = std::min(best, squared_distance(points.point(cell[a]), points.point(cell[b])));
+      best = std::min(best, spatial::squared_distance(points.point(cell[a]), points.point(cell[b])));
   return best;
 }
 
@@ -23,10 +23,10 @@ bool member_with_l2(const io::PointSet& points, std::span<const int> cell, std::
                     std::size_t q, double sigma_l2, const CosphOptions& o, CosphMember* out) {
   if (std::find(cell.begin(), cell.end(), static_cast<int>(q)) != cell.end()) return false;
   const auto pq = points.point(q);
-  const double power = squared_distance(centre, pq) - radius2;
+  const double power = spatial::squared_distance(centre, pq) - radius2;
   if (power < o.lower) return false;
   double l2 = sigma_l2;
-  for (int v : cell) l2 = std::min(l2, squared_distance(points.point(v), pq));
+  for (int v : cell) l2 = std::min(l2, spatial::squared_distance(points.point(v), pq));
   const double L = std::max(std::sqrt(l2), o.length_floor);
   const double bound = o.delta0 * o.delta0 * L * L;
   if (power > bound + o.slack) return false;

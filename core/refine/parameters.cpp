@@ -13,11 +13,11 @@ mpq_class mu0_times(const mpq_class& x) {
   return r;
 }
 
-ExactParameter::ExactParameter(const mpq_class& q) : value(q), text(rational_to_string(q)) { value.canonicalize(); }
+ExactParameter::ExactParameter(const mpq_class& q) : value(q), text(exact::rational_to_string(q)) { value.canonicalize(); }
 
 ExactParameter ExactParameter::parse(std::string_view text) {
   ExactParameter p;
-  p.value = parse_rational(text);
+  p.value = exact::parse_rational(text);
   p.text = std::string(text);
   return p;
 }

@@ -4,7 +4,7 @@
 
 namespace delcert::refine {
 
-Eigen::VectorXd sample_picking_region(const PickingRegion& region, Random& random) {
+Eigen::VectorXd sample_picking_region(const PickingRegion& region, sampling::Random& random) {
   const auto m = region.tangent.cols();
   Eigen::VectorXd u(m);
   double n2 = 0;
@@ -18,16 +18,16 @@ Eigen::VectorXd sample_picking_region(const PickingRegion& region, Random& rando
   return region.centre + region.tangent * (region.radius * u);
 }
 
-std::optional<Eigen::VectorXd> pick_in_region(const Manifold& manifold, std::span<const double> p, const Frame& frame,
-                                              const PickingRegion& region, Random& random, double max_distance,
+std::optional<Eigen::VectorXd> pick_in_region(const manifold::Manifold& manifold, std::span<const double> p, const manifold::Frame& frame,
+                                              const PickingRegion& region, sampling::Random& random, double max_distance,
                                               Eigen::VectorXd* y_out) {
   Eigen::VectorXd y = sample_picking_region(region, random);
   if (y_out) *y_out = y;
-  NewtonOptions options;
+  manifold::NewtonOptions options;
   options.max_distance = max_distance;
   auto x = manifold.psi(p, frame, y, options);
   if (!x || !x->allFinite()) return std::nullopt;
-  if (!manifold.on_selected_component(as_span(*x))) return std::nullopt;
+  if (!manifold.on_selected_component(manifold::as_span(*x))) return std::nullopt;
   return x;
 }
 

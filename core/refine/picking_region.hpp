@@ -19,13 +19,13 @@ struct PickingRegion {
 };
 
 // A point uniform in the m-ball (ambient coordinates): a Gaussian direction times U^(1/m).
-Eigen::VectorXd sample_picking_region(const PickingRegion& region, Random& random);
+Eigen::VectorXd sample_picking_region(const PickingRegion& region, sampling::Random& random);
 
 // y uniform in the region, then x = ψ_p(y) (Newton along the normal space of T_p, which must be
 // `frame`'s), on the selected component. nullopt when ψ_p fails, or moves x farther than
 // max_distance from y (0: no bound).
-std::optional<Eigen::VectorXd> pick_in_region(const Manifold& manifold, std::span<const double> p, const Frame& frame,
-                                              const PickingRegion& region, Random& random, double max_distance = 0,
+std::optional<Eigen::VectorXd> pick_in_region(const manifold::Manifold& manifold, std::span<const double> p, const manifold::Frame& frame,
+                                              const PickingRegion& region, sampling::Random& random, double max_distance = 0,
                                               Eigen::VectorXd* y_out = nullptr);
 
 }  // namespace delcert::refine

@@ -95,7 +95,7 @@ bool canonical_less(const Configuration& a, const Configuration& b) {
 
 class Refiner {
  public:
-  Refiner(const Manifold& manifold, const io::PointSet& input, const RefineParameters& params)
+  Refiner(const manifold::Manifold& manifold, const io::PointSet& input, const RefineParameters& params)
       : M_(manifold), P_(params), m_(manifold.intrinsic_dimension()), N_(manifold.ambient_dimension()) {
     validate(input);
     resolve_delta0(P_.constants, m_);
@@ -141,14 +141,14 @@ class Refiner {
   std::vector<std::size_t> cosph_affected(std::size_t round_start) const;
   void measure();
 
-  const Manifold& M_;
+  const manifold::Manifold& M_;
   RefineParameters P_;
   ConstantsAsDoubles d_;  // of P_.constants, once ε is set (setup_eps)
   int m_, N_;
   bool paper_ = false;
   double eps2_ = 0, mu0_eps_ = 0;
   RefineResult R_;
-  std::optional<Random> rng_;
+  std::optional<sampling::Random> rng_;
   tangential::TangentPlanes planes_;
   tangential::TangentialComplex tc_;
   tangential::StarOptions star_options_;
@@ -331,10 +331,10 @@ std::optional<Eigen::VectorXd> Refiner::produce(const Configuration& c, RuleStat
   if (!frame) return std::nullopt;
   Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
   auto x = M_.psi(p, *frame, centre);
-  if (x && (*x - centre).norm() <= std::sqrt(c.radius2) && M_.on_selected_component(as_span(*x))) return x;
+  if (x && (*x - centre).norm() <= std::sqrt(c.radius2) && M_.on_selected_component(manifold::as_span(*x))) return x;
   ++st.psi_failures;
   auto y = M_.project(c.centre);
-  if (y && M_.on_selected_component(as_span(*y))) return y;
+  if (y && M_.on_selected_component(manifold::as_span(*y))) return y;
   return std::nullopt;
 }
 
@@ -365,11 +365,11 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
       ++st.psi_failures;
       continue;
     }
-    const double d2 = index_.nearest_distance2(as_span(*x));
+    const double d2 = index_.nearest_distance2(manifold::as_span(*x));
     if (!(d2 > 0)) continue;  // on an existing point
     const bool sparse_ok = paper_ || d2 > sparse2;
     if (sparse_ok) {
-      if (!find_hitting_set(as_span(*x), R_.points, index_, hq)) return x;  // a good point
+      if (!find_hitting_set(manifold::as_span(*x), R_.points, index_, hq)) return x;  // a good point
       ++st.rejected_hit;
     } else {
       ++st.rejected_sparse;
@@ -386,14 +386,14 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
 
 bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
   std::size_t nn = 0;
-  const double d2 = index_.nearest_distance2(as_span(x), &nn);
+  const double d2 = index_.nearest_distance2(manifold::as_span(x), &nn);
   if (!(d2 > 0)) return false;  // never insert a duplicate point
   const std::size_t id = R_.points.size();
   const double d = std::sqrt(d2);
   if (d < mu0_eps_) R_.sparsity_violations.push_back({id, nn, d, rule});
   if (R_.inserted_by.empty() || d < R_.final.min_inserted_distance) R_.final.min_inserted_distance = d;
-  R_.points.push_back(as_span(x));
-  index_.push_back(as_span(x));
+  R_.points.push_back(manifold::as_span(x));
+  index_.push_back(manifold::as_span(x));
   R_.inserted_by.push_back(rule);
   R_.rules[rule].inserted++;
   return true;
@@ -425,7 +425,7 @@ std::vector<std::size_t> Refiner::cosph_affected(std::size_t round_start) const 
       for (std::size_t c = 0; c < st.size(); ++c) {
         const double r2 = st.radii2[c];
         const double bound = r2 + d2 * std::max(4 * r2, floor2);
-        if (squared_distance(px, st.centre(c)) <= bound * (1 + kMargin) + kMargin * r2) {
+        if (spatial::squared_distance(px, st.centre(c)) <= bound * (1 + kMargin) + kMargin * r2) {
           mark[p] = 1;
           break;
         }
@@ -662,7 +662,7 @@ void Refiner::measure() {
 
 }  // namespace
 
-RefineResult refine(const Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters) {
+RefineResult refine(const manifold::Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters) {
   Refiner r(manifold, input, parameters);
   return r.run();
 }

@@ -129,6 +129,6 @@ struct RefineResult {
 // Refines `input` (points on M) with the given parameters. Throws std::invalid_argument on bad
 // input (ParameterError, naming the option, for a constant out of range), std::domain_error when
 // a point is not a regular point of M.
-RefineResult refine(const Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters);
+RefineResult refine(const manifold::Manifold& manifold, const io::PointSet& input, const RefineParameters& parameters);
 
 }  // namespace delcert::refine

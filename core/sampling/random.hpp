@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-namespace delcert {
+namespace delcert::sampling {
 
 class Random {
  public:
@@ -27,4 +27,4 @@ class Random {
   std::mt19937_64 engine_;
 };
 
-}  // namespace delcert
+}  // namespace delcert::sampling

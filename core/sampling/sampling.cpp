@@ -10,7 +10,7 @@
 #include "core/spatial/neighbour_index.hpp"
 #include "io/input_error.hpp"
 
-namespace delcert {
+namespace delcert::sampling {
 
 namespace {
 
@@ -68,7 +68,7 @@ void sample_shape(const io::ShapeSpec& sh, int N, Random& rng, std::vector<doubl
 
 }  // namespace
 
-void sample_manifold(const Manifold& manifold, std::size_t count, Random& rng, io::PointSet& out) {
+void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& rng, io::PointSet& out) {
   const auto& spec = manifold.spec();
   const int N = manifold.ambient_dimension();
   out.dimension = N;
@@ -90,12 +90,12 @@ void sample_manifold(const Manifold& manifold, std::size_t count, Random& rng, i
                            "equations");
     for (int j = 0; j < N; ++j) p[j] = rng.uniform(spec.bounding_box[j].first, spec.bounding_box[j].second);
     auto z = manifold.project(p);
-    if (!z || !manifold.on_selected_component(as_span(*z))) continue;
+    if (!z || !manifold.on_selected_component(manifold::as_span(*z))) continue;
     bool inside = true;
     for (int j = 0; j < N; ++j)
       inside = inside && (*z)[j] >= spec.bounding_box[j].first && (*z)[j] <= spec.bounding_box[j].second;
     if (!inside) continue;
-    out.push_back(as_span(*z));
+    out.push_back(manifold::as_span(*z));
     ++produced;
   }
 }
@@ -141,7 +141,7 @@ std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, dou
   return selected;
 }
 
-EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options) {
+EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options) {
   if (!(options.eps > 0) || !std::isfinite(options.eps)) throw std::invalid_argument("eps must be a positive number");
   Random rng(options.seed);
   io::PointSet dense;
@@ -176,4 +176,4 @@ EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options) {
   return r;
 }
 
-}  // namespace delcert
+}  // namespace delcert::sampling

@@ -7,13 +7,13 @@
 #include "core/sampling/random.hpp"
 #include "io/points.hpp"
 
-namespace delcert {
+namespace delcert::sampling {
 
 // Appends `count` random points of M to `out`. Built-in shapes (the spec's "parametrization")
 // are sampled through their parametrisation, uniformly with respect to volume. Any other spec:
 // uniform points of its bounding box projected onto M (not volume-uniform; failures retried).
 // Throws std::runtime_error if a generic spec yields no projectable points.
-void sample_manifold(const Manifold& manifold, std::size_t count, Random& random, io::PointSet& out);
+void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& random, io::PointSet& out);
 
 struct EpsNetOptions {
   double eps = 0.25;
@@ -35,11 +35,11 @@ struct EpsNetResult {
 // An eps-net of M: farthest-point selection from a dense sample, stopping when every dense
 // point is within eps of the net. The output is eps-sparse (pairwise distance >= eps) and, as
 // far as the dense sample can tell, an eps-sample. Same options, same bytes.
-EpsNetResult eps_net(const Manifold& manifold, const EpsNetOptions& options);
+EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options);
 
 // Farthest-point selection on a given point set: indices of the selected points, in order,
 // starting from point 0, until the farthest remaining point is closer than eps. Also returns
 // the final covering radius of the selection over `dense`.
 std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius);
 
-}  // namespace delcert
+}  // namespace delcert::sampling

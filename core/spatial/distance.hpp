@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <span>
 
-namespace delcert {
+namespace delcert::spatial {
 
 inline double squared_distance(std::span<const double> a, std::span<const double> b) {
   double s = 0;
@@ -15,4 +15,4 @@ inline double squared_distance(std::span<const double> a, std::span<const double
   return s;
 }
 
-}  // namespace delcert
+}  // namespace delcert::spatial

@@ -18,7 +18,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/tangential/local_problem.hpp"
+#include "core/tangential/detail/local_problem.hpp"
 
 namespace delcert::tangential::detail {
 

@@ -11,9 +11,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/tangential/local_problem.hpp"
+#include "core/tangential/detail/local_problem.hpp"
 #include "core/support/parallel.hpp"
-#include "core/tangential/power_cell.hpp"
+#include "core/tangential/detail/power_cell.hpp"
 #include "core/tangential/star.hpp"
 
 namespace delcert::tangential {

@@ -35,7 +35,7 @@ void TangentPlanes::push_back(const Eigen::MatrixXd& tangent) {
   push_back(std::span<const double>(tangent.data(), static_cast<std::size_t>(tangent.size())));
 }
 
-void extend_tangent_planes(const Manifold& manifold, const io::PointSet& points, TangentPlanes& planes) {
+void extend_tangent_planes(const manifold::Manifold& manifold, const io::PointSet& points, TangentPlanes& planes) {
   const int N = manifold.ambient_dimension(), m = manifold.intrinsic_dimension();
   if (points.dimension != N)
     throw std::invalid_argument("points have dimension " + std::to_string(points.dimension) + ", the manifold N = " +
@@ -50,7 +50,7 @@ void extend_tangent_planes(const Manifold& manifold, const io::PointSet& points,
   }
 }
 
-TangentPlanes compute_tangent_planes(const Manifold& manifold, const io::PointSet& points, int threads) {
+TangentPlanes compute_tangent_planes(const manifold::Manifold& manifold, const io::PointSet& points, int threads) {
   const int N = manifold.ambient_dimension(), m = manifold.intrinsic_dimension();
   if (points.dimension != N)
     throw std::invalid_argument("points have dimension " + std::to_string(points.dimension) + ", the manifold N = " +

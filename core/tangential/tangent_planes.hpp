@@ -50,9 +50,9 @@ class TangentPlanes {
 
 // T_p for every point from Manifold::frame (the tangent block of the QR of J_F(p)^T).
 // Throws std::domain_error naming the first point (0-based) where J_F is rank deficient.
-TangentPlanes compute_tangent_planes(const Manifold& manifold, const io::PointSet& points, int threads = 1);
+TangentPlanes compute_tangent_planes(const manifold::Manifold& manifold, const io::PointSet& points, int threads = 1);
 
 // Appends the planes of points [planes.size(), points.size()) (for the refiner after insertions).
-void extend_tangent_planes(const Manifold& manifold, const io::PointSet& points, TangentPlanes& planes);
+void extend_tangent_planes(const manifold::Manifold& manifold, const io::PointSet& points, TangentPlanes& planes);
 
 }  // namespace delcert::tangential

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <regex>
 
-#include "certify/sha256.hpp"
+#include "certify/detail/sha256.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -101,7 +101,7 @@ TEST(Cli, SpecIsReadOnceAndTheHashIsOfTheBytesChecked) {
                     dir);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   auto j = nlohmann::json::parse(read_text(out));
-  EXPECT_EQ(j["inputs"]["manifold"]["sha256"], Sha256::hex(read_text(spec)));
+  EXPECT_EQ(j["inputs"]["manifold"]["sha256"], detail::Sha256::hex(read_text(spec)));
 }
 
 struct Bad {

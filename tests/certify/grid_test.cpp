@@ -23,7 +23,7 @@ TEST(PointGrid, CandidatesContainEveryPointOfTheBall) {
       if (i % 50 == 0) x[0] = std::nextafter(x[0], 10.0);  // values one ulp apart
       P.push_back(x);
     }
-    PointGrid grid(P, std::min(dim, 3));
+    detail::PointGrid grid(P, std::min(dim, 3));
     for (int q = 0; q < 200; ++q) {
       std::vector<double> c(dim);
       for (auto& v : c) v = rng.uniform() * 5 - 2.5;
@@ -62,7 +62,7 @@ bool in_ball_exact(std::span<const double> q, std::span<const double> c, double 
 }
 
 // Every point of the exact box (resp. ball) is returned, whatever the rounding mode of the query.
-void expect_superset(const io::PointSet& P, const PointGrid& grid, std::span<const double> c, double r) {
+void expect_superset(const io::PointSet& P, const detail::PointGrid& grid, std::span<const double> c, double r) {
   for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
     std::vector<int> cand, ball;
     {
@@ -88,7 +88,7 @@ void expect_superset(const io::PointSet& P, const PointGrid& grid, std::span<con
 
 // Queries centred at points, between points and far away, with radii equal to coordinate
 // differences (the box boundary falls exactly on a point) and their neighbours.
-void adversarial_queries(const io::PointSet& P, const PointGrid& grid, Rng& rng, int count) {
+void adversarial_queries(const io::PointSet& P, const detail::PointGrid& grid, Rng& rng, int count) {
   const int N = P.dimension;
   for (int q = 0; q < count; ++q) {
     std::size_t a = rng.next() % P.size(), b = rng.next() % P.size();
@@ -124,7 +124,7 @@ TEST(PointGrid, SupersetAtAdversarialMagnitudes) {
       io::PointSet P = scaled_cloud(rng, 60, N, scale);
       for (double hint : {0.0, scale * 1e-9, scale})
         for (int m : {1, 2}) {
-          PointGrid grid(P, m, hint);
+          detail::PointGrid grid(P, m, hint);
           EXPECT_GT(grid.spacing(), 0);
           EXPECT_LE(grid.diameter(), DBL_MAX);
           adversarial_queries(P, grid, rng, 12);
@@ -146,7 +146,7 @@ TEST(PointGrid, SupersetWithMixedMagnitudes) {
       P.push_back(x);
     }
     for (double hint : {0.0, 1e-320, 1e-300, 1.0}) {
-      PointGrid grid(P, 2, hint);
+      detail::PointGrid grid(P, 2, hint);
       adversarial_queries(P, grid, rng, 30);
     }
   }
@@ -165,7 +165,7 @@ TEST(PointGrid, HugeExtentsDoNotOverflowCellKeys) {
     P.push_back(std::vector<double>{far, -far, far});
     for (double hint : {1e-300, 1e-12, 1e-6})
       for (int m : {1, 3}) {
-        PointGrid grid(P, m, hint);
+        detail::PointGrid grid(P, m, hint);
         adversarial_queries(P, grid, rng, 40);
         // Small radii around the cluster: the scan-every-occupied-cell path and the odometer.
         for (double r : {1e-4, 1e-3, 1e3}) expect_superset(P, grid, P.point(rng.next() % 40), r);
@@ -182,7 +182,7 @@ TEST(PointGrid, SubnormalPoints) {
   P.push_back(std::vector<double>{0, 5e-324, 0});
   P.push_back(std::vector<double>{5e-324, 5e-324, 0});
   for (int m : {1, 2, 3}) {
-    PointGrid grid(P, m);
+    detail::PointGrid grid(P, m);
     EXPECT_GT(grid.spacing(), 0);
     EXPECT_GE(grid.diameter(), 5e-324);
     for (std::size_t i = 0; i < P.size(); ++i)
@@ -194,7 +194,7 @@ TEST(PointGrid, SubnormalPoints) {
 TEST(PointGrid, NanRadiusReturnsEveryPoint) {
   Rng rng(1);
   io::PointSet P = scaled_cloud(rng, 20, 2, 1);
-  PointGrid grid(P, 1);
+  detail::PointGrid grid(P, 1);
   EXPECT_EQ(grid.candidates(P.point(0), NAN).size(), P.size());
 }
 

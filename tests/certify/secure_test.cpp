@@ -24,7 +24,7 @@ TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBack
   P.push_back(std::vector<double>{0, -0.1, 1});
   io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
   exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
-  PointGrid grid(P, 2);
+  detail::PointGrid grid(P, 2);
   StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
   exact::FilterContext ctx;
   StarReport star = analyse_star(S, 0, nullptr, ctx);

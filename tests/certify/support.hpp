@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "certify/certify.hpp"
-#include "certify/grid.hpp"
+#include "certify/detail/grid.hpp"
 #include "certify/star.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/complex.hpp"
@@ -159,7 +159,7 @@ struct Audit {
 inline Audit audit(const std::string& spec_source, const io::PointSet& P) {
   io::ManifoldSpec spec = io::read_spec(spec_source);
   exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
-  PointGrid grid(P, spec.intrinsic_dimension);
+  detail::PointGrid grid(P, spec.intrinsic_dimension);
   StarSettings S{&P, &system, &grid, spec.intrinsic_dimension, std::nullopt, std::nullopt};
   exact::FilterContext ctx;
   Audit A;

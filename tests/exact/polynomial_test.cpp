@@ -4,7 +4,7 @@
 
 #include <vector>
 
-namespace delcert {
+namespace delcert::exact {
 namespace {
 
 TEST(ParseRational, IntegersDecimalsFractionsAreExact) {
@@ -243,4 +243,4 @@ TEST(Polynomial, DoubleEvaluationAgreesWithExact) {
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::exact

@@ -84,8 +84,8 @@ TEST(Claims, IntegersAreReadExactly) {
 // tiny, huge, zero or an integer, and whichever claims are left out.
 TEST(Claims, WriteThenReadGivesTheSameRationals) {
   const mpq_class values[] = {mpq_class(1, 10), mpq_class(1, 3), mpq_class(1, 12960000), mpq_class(0),
-                              mpq_class(1), parse_rational("123456789012345678901234567891/7"),
-                              parse_rational("1e-300"), mpq_class(2, 3)};
+                              mpq_class(1), exact::parse_rational("123456789012345678901234567891/7"),
+                              exact::parse_rational("1e-300"), mpq_class(2, 3)};
   for (int mask = 0; mask < 16; ++mask)
     for (const mpq_class& v : values) {
       Claims c;

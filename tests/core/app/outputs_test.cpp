@@ -7,7 +7,7 @@
 
 #include "tests/test_support.hpp"
 
-namespace delcert {
+namespace delcert::app {
 namespace {
 
 using test::binary;
@@ -89,4 +89,4 @@ TEST(Outputs, RefineRefusesToOverwriteAnInputAndChecksItsDirectory) {
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::app

@@ -6,7 +6,7 @@
 #include "io/points.hpp"
 #include "tests/test_support.hpp"
 
-namespace delcert {
+namespace delcert::app {
 namespace {
 
 using test::binary;
@@ -78,4 +78,4 @@ TEST(DelcertCommand, HelpListsSubcommands) {
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::app

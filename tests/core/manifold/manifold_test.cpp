@@ -8,16 +8,16 @@
 #include "io/spec.hpp"
 #include "tests/test_support.hpp"
 
-namespace delcert {
+namespace delcert::manifold {
 namespace {
 
 class EveryBuiltin : public ::testing::TestWithParam<std::string> {
  protected:
   Manifold manifold{io::read_spec("builtin:" + GetParam())};
   io::PointSet sample(std::size_t n, std::uint64_t seed) const {
-    Random rng(seed);
+    sampling::Random rng(seed);
     io::PointSet ps;
-    sample_manifold(manifold, n, rng, ps);
+    sampling::sample_manifold(manifold, n, rng, ps);
     return ps;
   }
 };
@@ -53,7 +53,7 @@ TEST_P(EveryBuiltin, TangentBasesAreOrthonormalAndOrthogonalToEveryGradient) {
 TEST_P(EveryBuiltin, PsiInvertsTheTangentProjection) {
   const int m = manifold.intrinsic_dimension();
   auto ps = sample(60, 13);
-  Random rng(14);
+  sampling::Random rng(14);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     Eigen::Map<const Eigen::VectorXd> p(ps.point(i).data(), manifold.ambient_dimension());
     auto f = manifold.frame(ps.point(i));
@@ -74,7 +74,7 @@ TEST_P(EveryBuiltin, PsiInvertsTheTangentProjection) {
 
 TEST_P(EveryBuiltin, ProjectFindsTheClosestPoint) {
   auto ps = sample(40, 15);
-  Random rng(16);
+  sampling::Random rng(16);
   const int N = manifold.ambient_dimension();
   for (std::size_t i = 0; i < ps.size(); ++i) {
     Eigen::Map<const Eigen::VectorXd> p(ps.point(i).data(), N);
@@ -107,12 +107,12 @@ TEST(Manifold, PsiReportsFailureInsteadOfGarbage) {
 
 TEST(Manifold, GenericSpecSamplesByProjection) {
   Manifold ellipsoid(io::read_spec(test::fixture("specs/ellipsoid.json")));
-  Random rng(3);
+  sampling::Random rng(3);
   io::PointSet ps;
-  sample_manifold(ellipsoid, 100, rng, ps);
+  sampling::sample_manifold(ellipsoid, 100, rng, ps);
   ASSERT_EQ(ps.size(), 100u);
   for (std::size_t i = 0; i < ps.size(); ++i) EXPECT_LT(ellipsoid.residual(ps.point(i)), 1e-12);
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::manifold

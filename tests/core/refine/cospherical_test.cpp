@@ -86,7 +86,7 @@ TEST(Cosph, PreconditionsOfTheFullDefinition) {
 }
 
 TEST(Cosph, MembersAgreeWithBruteForce) {
-  Random rng(3);
+  sampling::Random rng(3);
   io::PointSet ps = base();
   for (int i = 0; i < 400; ++i) {
     // Points near the unit sphere, so that many powers are small.

@@ -87,7 +87,7 @@ std::optional<std::vector<std::size_t>> brute_force(std::span<const double> x, c
 }
 
 TEST(HittingSets, AgreesWithBruteForceOnRandomClouds) {
-  Random rng(31);
+  sampling::Random rng(31);
   int hits = 0, misses = 0;
   for (int trial = 0; trial < 120; ++trial) {
     io::PointSet ps;

@@ -12,17 +12,17 @@ namespace {
 
 TEST(PickingRegion, UniformInTheTangentBall) {
   for (const char* name : {"sphere-2", "sphere-3"}) {
-    Manifold M(io::read_spec(std::string("builtin:") + name));
+    manifold::Manifold M(io::read_spec(std::string("builtin:") + name));
     const int m = M.intrinsic_dimension(), N = M.ambient_dimension();
     Eigen::VectorXd p = Eigen::VectorXd::Zero(N);
     p[0] = 1;
-    auto frame = M.frame(as_span(p));
+    auto frame = M.frame(manifold::as_span(p));
     ASSERT_TRUE(frame);
     PickingRegion region;
     region.centre = p + frame->tangent * Eigen::VectorXd::Constant(m, 0.05);
     region.radius = 0.04;
     region.tangent = frame->tangent;
-    Random rng(8);
+    sampling::Random rng(8);
     const int n = 4000;
     int inner = 0;
     Eigen::VectorXd mean = Eigen::VectorXd::Zero(N);
@@ -43,10 +43,10 @@ TEST(PickingRegion, UniformInTheTangentBall) {
 }
 
 TEST(PickingRegion, PsiLandsOnTheManifoldAboveTheSample) {
-  Manifold M(io::read_spec("builtin:so3"));
-  Random rng(2);
+  manifold::Manifold M(io::read_spec("builtin:so3"));
+  sampling::Random rng(2);
   io::PointSet ps;
-  sample_manifold(M, 3, rng, ps);
+  sampling::sample_manifold(M, 3, rng, ps);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     auto frame = M.frame(ps.point(i));
     ASSERT_TRUE(frame);
@@ -59,8 +59,8 @@ TEST(PickingRegion, PsiLandsOnTheManifoldAboveTheSample) {
       Eigen::VectorXd y;
       auto x = pick_in_region(M, ps.point(i), *frame, region, rng, 0.1, &y);
       ASSERT_TRUE(x);
-      EXPECT_LT(M.residual(as_span(*x)), 1e-12);
-      EXPECT_TRUE(M.on_selected_component(as_span(*x)));
+      EXPECT_LT(M.residual(manifold::as_span(*x)), 1e-12);
+      EXPECT_TRUE(M.on_selected_component(manifold::as_span(*x)));
       // x - y is normal to T_p: the projection of x onto T_p is y.
       EXPECT_LT((frame->tangent.transpose() * (*x - y)).norm(), 1e-12);
     }
@@ -72,7 +72,7 @@ TEST(PickingRegion, SameSeedSameSamples) {
   region.centre = Eigen::VectorXd::Zero(4);
   region.radius = 1;
   region.tangent = Eigen::MatrixXd::Identity(4, 3);
-  Random a(99), b(99);
+  sampling::Random a(99), b(99);
   for (int i = 0; i < 10; ++i) EXPECT_EQ(sample_picking_region(region, a), sample_picking_region(region, b));
 }
 

@@ -11,7 +11,7 @@
 #include "io/points.hpp"
 #include "tests/test_support.hpp"
 
-namespace delcert {
+namespace delcert::refine {
 namespace {
 
 using test::binary;
@@ -175,4 +175,4 @@ TEST(RefineCommand, CertifierCertifiesTheClaims) {
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::refine

@@ -7,7 +7,7 @@
 
 #include "tests/test_support.hpp"
 
-namespace delcert {
+namespace delcert::refine {
 namespace {
 
 using test::binary;
@@ -60,4 +60,4 @@ INSTANTIATE_TEST_SUITE_P(Builtins, RefineThenCertify,
                          });
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::refine

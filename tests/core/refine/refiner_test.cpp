@@ -21,15 +21,15 @@
 namespace delcert::refine {
 namespace {
 
-Manifold builtin(const std::string& name) { return Manifold(io::read_spec("builtin:" + name)); }
+manifold::Manifold builtin(const std::string& name) { return manifold::Manifold(io::read_spec("builtin:" + name)); }
 
 ExactParameter exact(const char* text) { return ExactParameter::parse(text); }
 
-io::PointSet net(const Manifold& M, double eps, std::uint64_t seed = 1) {
-  EpsNetOptions o;
+io::PointSet net(const manifold::Manifold& M, double eps, std::uint64_t seed = 1) {
+  sampling::EpsNetOptions o;
   o.eps = eps;
   o.seed = seed;
-  return eps_net(M, o).points;
+  return sampling::eps_net(M, o).points;
 }
 
 double dist(std::span<const double> a, std::span<const double> b) {
@@ -43,7 +43,7 @@ double dist(std::span<const double> a, std::span<const double> b) {
 // consistent; every star cell has R_p < eps and is Γ0-good; every star cell is power-protected
 // by more than δ0^2 (eps/9)^2 against every other point (brute force); every inserted point is
 // farther than eps/9 from the points before it.
-void expect_certified_by_own_measure(const Manifold& M, const RefineResult& r) {
+void expect_certified_by_own_measure(const manifold::Manifold& M, const RefineResult& r) {
   const ConstantsAsDoubles P = as_doubles(r.parameters.constants);
   auto planes = tangential::compute_tangent_planes(M, r.points);
   tangential::TangentialComplex tc(r.points, planes);
@@ -83,7 +83,7 @@ std::size_t inserted(const RefineResult& r, Rule rule) { return r.rules[rule].in
 
 TEST(Refiner, RuleOneInsertsAtTheCentresOfBigCells) {
   // The octahedron's vertices on S^2: every star cell has R_p ≈ 0.8, far above eps = 0.5.
-  Manifold M = builtin("sphere-2");
+  manifold::Manifold M = builtin("sphere-2");
   io::PointSet octa;
   octa.dimension = 3;
   for (int i = 0; i < 3; ++i)
@@ -109,7 +109,7 @@ TEST(Refiner, RuleOneInsertsAtTheCentresOfBigCells) {
 
 TEST(Refiner, RuleTwoRefinesSliversInTheStars) {
   // An eps-net of S^3 has slivers: with Γ0 = 0.25 tetrahedra need thickness >= 0.0156.
-  Manifold M = builtin("sphere-3");
+  manifold::Manifold M = builtin("sphere-3");
   auto pts = net(M, 0.3);
   for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
     RefineParameters p;
@@ -141,7 +141,7 @@ io::PointSet torus_grid(int n) {
 }
 
 TEST(Refiner, RuleTwoBreaksQuasiCosphericalSimplices) {
-  Manifold M = builtin("clifford-torus-2");
+  manifold::Manifold M = builtin("clifford-torus-2");
   auto grid = torus_grid(14);
   for (RefineMode mode : {RefineMode::practical, RefineMode::paper}) {
     RefineParameters p;
@@ -160,7 +160,7 @@ TEST(Refiner, RuleTwoBreaksQuasiCosphericalSimplices) {
 TEST(Refiner, PickValidRejectsHitCandidates) {
   // With δ0 = 0.1 (H3 violated) nearly every nearby 4-simplex of S^3 can be weighted into a
   // hitting set: most candidates are rejected, the good ones are inserted.
-  Manifold M = builtin("sphere-3");
+  manifold::Manifold M = builtin("sphere-3");
   auto pts = net(M, 0.4);
   RefineParameters p;
   p.mode = RefineMode::paper;
@@ -179,7 +179,7 @@ TEST(Refiner, PickValidRejectsHitCandidates) {
 }
 
 TEST(Refiner, InconsistencyRuleMakesTheStarsAgree) {
-  Manifold M = builtin("clifford-torus-2");
+  manifold::Manifold M = builtin("clifford-torus-2");
   auto pts = net(M, 0.25);
   RefineParameters p;
   p.constants.eps = exact("0.25");
@@ -196,7 +196,7 @@ TEST(Refiner, InconsistencyRuleMakesTheStarsAgree) {
 }
 
 TEST(Refiner, UnprotectedRuleFiresOnSO3) {
-  Manifold M = builtin("so3");
+  manifold::Manifold M = builtin("so3");
   auto pts = net(M, 0.6);
   RefineParameters p;
   p.constants.eps = exact("0.6");
@@ -216,7 +216,7 @@ struct CiCase {
 class CiSizedRefinement : public ::testing::TestWithParam<CiCase> {};
 
 TEST_P(CiSizedRefinement, OutputIsConsistentGoodAndProtected) {
-  Manifold M = builtin(GetParam().manifold);
+  manifold::Manifold M = builtin(GetParam().manifold);
   RefineParameters p;
   p.constants.eps = exact(GetParam().eps);
   auto r = refine(M, net(M, std::atof(GetParam().eps)), p);
@@ -236,7 +236,7 @@ INSTANTIATE_TEST_SUITE_P(Builtins, CiSizedRefinement,
                          });
 
 TEST(Refiner, SameSeedSameOutputForAnyThreadCount) {
-  Manifold M = builtin("clifford-torus-2");
+  manifold::Manifold M = builtin("clifford-torus-2");
   auto grid = torus_grid(12);
   RefineParameters p;
   p.seed = 7;
@@ -252,7 +252,7 @@ TEST(Refiner, SameSeedSameOutputForAnyThreadCount) {
 }
 
 TEST(Refiner, CapsStopTheRunAndSaySo) {
-  Manifold M = builtin("sphere-2");
+  manifold::Manifold M = builtin("sphere-2");
   auto pts = net(M, 0.3);
   RefineParameters p;
   p.constants.eps = exact("0.2");
@@ -271,7 +271,7 @@ TEST(Refiner, CapsStopTheRunAndSaySo) {
 }
 
 TEST(Refiner, ParametersAreValidated) {
-  Manifold M = builtin("sphere-2");
+  manifold::Manifold M = builtin("sphere-2");
   auto pts = net(M, 0.5);
   RefineParameters p;
   p.constants.eps = exact("0.5");
@@ -337,14 +337,14 @@ TEST(Parameters, TextValueAndDoubles) {
 }
 
 TEST(Refiner, DecimalAboveAndDefaultDelta0) {
-  EXPECT_EQ(decimal_above(0.4712), parse_rational("0.48"));
-  EXPECT_EQ(decimal_above(0.47), parse_rational("0.48"));
-  EXPECT_EQ(decimal_above(3.2), parse_rational("3.3"));
-  EXPECT_EQ(decimal_above(0.00999), parse_rational("0.01"));
-  EXPECT_EQ(decimal_above(12.0), parse_rational("13"));
-  EXPECT_EQ(default_delta0(parse_rational("0.1"), 2), parse_rational("0.01"));
-  EXPECT_EQ(default_delta0(parse_rational("0.1"), 3), parse_rational("0.01"));
-  EXPECT_EQ(default_delta0(parse_rational("1/5"), 4), parse_rational("0.008"));
+  EXPECT_EQ(decimal_above(0.4712), exact::parse_rational("0.48"));
+  EXPECT_EQ(decimal_above(0.47), exact::parse_rational("0.48"));
+  EXPECT_EQ(decimal_above(3.2), exact::parse_rational("3.3"));
+  EXPECT_EQ(decimal_above(0.00999), exact::parse_rational("0.01"));
+  EXPECT_EQ(decimal_above(12.0), exact::parse_rational("13"));
+  EXPECT_EQ(default_delta0(exact::parse_rational("0.1"), 2), exact::parse_rational("0.01"));
+  EXPECT_EQ(default_delta0(exact::parse_rational("0.1"), 3), exact::parse_rational("0.01"));
+  EXPECT_EQ(default_delta0(exact::parse_rational("1/5"), 4), exact::parse_rational("0.008"));
 }
 
 }  // namespace

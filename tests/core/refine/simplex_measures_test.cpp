@@ -22,7 +22,7 @@ SimplexGeometry geometry(const Points& pts) {
 
 // The same simplex moved into R^N by a random rotation and translation.
 Points embed(const Points& pts, int N, std::uint64_t seed) {
-  Random rng(seed);
+  sampling::Random rng(seed);
   Eigen::MatrixXd A(N, N);
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) A(i, j) = rng.normal();
@@ -74,7 +74,7 @@ TEST(SimplexMeasures, RegularSimplicesKnownThickness) {
 }
 
 TEST(SimplexMeasures, AltitudeMatchesLeastSquaresDistance) {
-  Random rng(12);
+  sampling::Random rng(12);
   for (int trial = 0; trial < 50; ++trial) {
     const int k = 2 + trial % 4, N = k + 2;
     Points pts(k + 1, std::vector<double>(N));

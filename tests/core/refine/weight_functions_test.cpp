@@ -28,7 +28,7 @@ double dist2(const Eigen::VectorXd& c, const std::vector<double>& p) {
   return s;
 }
 
-Points random_simplex(Random& rng, int k, int N) {
+Points random_simplex(sampling::Random& rng, int k, int N) {
   Points pts(k + 1, std::vector<double>(N));
   for (auto& p : pts)
     for (auto& c : p) c = rng.normal();
@@ -64,7 +64,7 @@ TEST(WeightFunctions, EdgeClosedForm) {
 }
 
 TEST(WeightFunctions, CentreSatisfiesTheDefiningEquations) {
-  Random rng(5);
+  sampling::Random rng(5);
   for (int trial = 0; trial < 60; ++trial) {
     const int k = 1 + trial % 5, N = k + 1 + trial % 3;
     Points pts = random_simplex(rng, k, N);
@@ -88,7 +88,7 @@ TEST(WeightFunctions, CentreSatisfiesTheDefiningEquations) {
 
 TEST(WeightFunctions, PaperLemma41Bounds) {
   // (1) R(face, ω|face) <= R(τ, ω);  (2) Δ(τ) <= 2 R(τ, ω) / (1 - δ0^2) for ω <= δ0 L.
-  Random rng(17);
+  sampling::Random rng(17);
   const double delta0 = 0.4;
   for (int trial = 0; trial < 200; ++trial) {
     const int k = 2 + trial % 4, N = k + 1;
@@ -116,7 +116,7 @@ TEST(WeightFunctions, PaperLemma41Bounds) {
 }
 
 TEST(WeightFunctions, MinimumOverElementaryWeightsMatchesAScan) {
-  Random rng(23);
+  sampling::Random rng(23);
   const double delta0 = 0.45;
   for (int trial = 0; trial < 40; ++trial) {
     const int k = 1 + trial % 5, N = k + 2;

@@ -7,7 +7,7 @@
 #include "core/spatial/neighbour_index.hpp"
 #include "io/spec.hpp"
 
-namespace delcert {
+namespace delcert::sampling {
 namespace {
 
 double min_pairwise_distance_brute_force(const io::PointSet& ps) {
@@ -29,7 +29,7 @@ struct NetCase {
 class EpsNet : public ::testing::TestWithParam<NetCase> {};
 
 TEST_P(EpsNet, IsSparseCoveringAndDeterministic) {
-  Manifold manifold(io::read_spec(std::string("builtin:") + GetParam().manifold));
+  manifold::Manifold manifold(io::read_spec(std::string("builtin:") + GetParam().manifold));
   EpsNetOptions o;
   o.eps = GetParam().eps;
   o.seed = 42;
@@ -78,4 +78,4 @@ TEST(FarthestPoint, KnownAnswerOnALine) {
 }
 
 }  // namespace
-}  // namespace delcert
+}  // namespace delcert::sampling

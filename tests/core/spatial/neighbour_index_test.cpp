@@ -13,7 +13,7 @@ namespace delcert::spatial {
 namespace {
 
 TEST(NeighbourIndex, BallAndNearestMatchBruteForceWhileGrowing) {
-  Random rng(4);
+  sampling::Random rng(4);
   io::PointSet ps;
   ps.dimension = 5;
   for (int i = 0; i < 300; ++i) {
@@ -53,7 +53,7 @@ TEST(NeighbourIndex, BallAndNearestMatchBruteForceWhileGrowing) {
 }
 
 TEST(NeighbourIndex, StaticQueriesAgreeWithBruteForce) {
-  Random rng(5);
+  sampling::Random rng(5);
   io::PointSet ps;
   ps.dimension = 4;
   for (int i = 0; i < 3000; ++i) ps.coordinates.push_back(rng.uniform(-1, 1));

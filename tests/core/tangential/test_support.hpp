@@ -28,10 +28,10 @@ struct Sample {
 
 // `count` random points of a built-in manifold with T_p from the model.
 inline Sample builtin_sample(const std::string& name, std::size_t count, std::uint64_t seed) {
-  Manifold manifold(io::read_spec("builtin:" + name));
-  Random random(seed);
+  manifold::Manifold manifold(io::read_spec("builtin:" + name));
+  sampling::Random random(seed);
   Sample s;
-  sample_manifold(manifold, count, random, s.points);
+  sampling::sample_manifold(manifold, count, random, s.points);
   s.planes = compute_tangent_planes(manifold, s.points);
   return s;
 }
@@ -40,7 +40,7 @@ inline Sample builtin_sample(const std::string& name, std::size_t count, std::ui
 // planes given directly: an orthonormal basis of the orthogonal complement of p.
 inline Sample sphere_sample(int m, std::size_t count, std::uint64_t seed) {
   const int N = m + 1;
-  Random random(seed);
+  sampling::Random random(seed);
   Sample s;
   s.points.dimension = N;
   s.planes = TangentPlanes(N, m);
@@ -61,8 +61,8 @@ inline Sample sphere_sample(int m, std::size_t count, std::uint64_t seed) {
 // moved by at most `jitter` lattice spacings, mapped to the Clifford torus in R^4. The lattice's
 // Delaunay triangulation is well protected, so the tangential complex is the lattice's.
 inline Sample clifford_lattice(int C, int R, double jitter, std::uint64_t seed) {
-  Manifold manifold(io::read_spec("builtin:clifford-torus-2"));
-  Random random(seed);
+  manifold::Manifold manifold(io::read_spec("builtin:clifford-torus-2"));
+  sampling::Random random(seed);
   Sample s;
   s.points.dimension = 4;
   const double two_pi = 2 * std::numbers::pi;
@@ -80,8 +80,8 @@ inline Sample clifford_lattice(int C, int R, double jitter, std::uint64_t seed) 
 // A K^k grid on the flat torus (k = 2: the Clifford torus in R^4, k = 3: in R^6), each angle
 // moved by up to `jitter` radians: exactly cospherical for jitter 0, nearly so for tiny jitter.
 inline Sample clifford_grid(int k, int K, double jitter, std::uint64_t seed) {
-  Manifold manifold(io::read_spec(k == 2 ? "builtin:clifford-torus-2" : "builtin:clifford-torus-3"));
-  Random random(seed);
+  manifold::Manifold manifold(io::read_spec(k == 2 ? "builtin:clifford-torus-2" : "builtin:clifford-torus-3"));
+  sampling::Random random(seed);
   Sample s;
   s.points.dimension = 2 * k;
   std::vector<int> idx(k, 0);

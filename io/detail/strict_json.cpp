@@ -1,4 +1,4 @@
-#include "io/strict_json.hpp"
+#include "io/detail/strict_json.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -6,7 +6,7 @@
 
 #include "io/input_error.hpp"
 
-namespace delcert::io {
+namespace delcert::io::detail {
 
 using nlohmann::json;
 
@@ -188,4 +188,4 @@ std::optional<mpz_class> StrictJson::integer(const std::string& path) const {
   return mpz_class(*t, 10);  // the lexer accepted it: -?(0|[1-9][0-9]*)
 }
 
-}  // namespace delcert::io
+}  // namespace delcert::io::detail

@@ -1,4 +1,4 @@
-#include "io/text_lines.hpp"
+#include "io/detail/text_lines.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -17,7 +17,7 @@
 
 #include "io/points.hpp"
 
-namespace delcert::certify {
+namespace delcert::certify::detail {
 
 class PointGrid {
  public:
@@ -64,4 +64,4 @@ class PointGrid {
   std::vector<int> dense_;  // when the grid is small enough: key -> begin in order_ (CSR, #cells + 1)
 };
 
-}  // namespace delcert::certify
+}  // namespace delcert::certify::detail

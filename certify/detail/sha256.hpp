@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace delcert::certify {
+namespace delcert::certify::detail {
 
 class Sha256 {
  public:
@@ -24,4 +24,4 @@ class Sha256 {
   std::uint64_t total_ = 0;  // bytes hashed so far
 };
 
-}  // namespace delcert::certify
+}  // namespace delcert::certify::detail

@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-namespace delcert::io {
+namespace delcert::io::detail {
 
 class StrictJson {
  public:
@@ -52,4 +52,4 @@ std::string json_member_path(const std::string& parent, const std::string& key);
 // "parent[i]".
 std::string json_element_path(const std::string& parent, std::size_t i);
 
-}  // namespace delcert::io
+}  // namespace delcert::io::detail

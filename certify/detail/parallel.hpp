@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace delcert::certify {
+namespace delcert::certify::detail {
 
 // f(i, worker) for every i in [0, n); worker in [0, threads) identifies per-thread state.
 template <class F>
@@ -39,4 +39,4 @@ void parallel_for(std::size_t n, int threads, F&& f) {
     if (errors[t]) std::rethrow_exception(errors[t]);
 }
 
-}  // namespace delcert::certify
+}  // namespace delcert::certify::detail

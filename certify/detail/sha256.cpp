@@ -1,6 +1,6 @@
-#include "certify/sha256.hpp"
+#include "certify/detail/sha256.hpp"
 
-namespace delcert::certify {
+namespace delcert::certify::detail {
 
 namespace {
 
@@ -76,4 +76,4 @@ std::string Sha256::hex(std::string_view bytes) {
   return out;
 }
 
-}  // namespace delcert::certify
+}  // namespace delcert::certify::detail

@@ -1,4 +1,4 @@
-#include "certify/grid.hpp"
+#include "certify/detail/grid.hpp"
 
 #include <algorithm>
 #include <cfloat>
@@ -54,7 +54,7 @@
 // nearest (in ratio) to the old choice of three spacings, so cells are within a factor sqrt(2) of
 // the old ones per axis.
 
-namespace delcert::certify {
+namespace delcert::certify::detail {
 
 namespace {
 
@@ -268,4 +268,4 @@ std::vector<int> PointGrid::ball(std::span<const double> c, double r) const {
   return out;
 }
 
-}  // namespace delcert::certify
+}  // namespace delcert::certify::detail
