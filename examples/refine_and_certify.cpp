@@ -26,13 +26,13 @@ int main() try {
   using namespace delcert;
 
   // 1. The manifold: a spec compiled into the library (a JSON file path works the same way).
-  Manifold torus(io::read_spec("builtin:clifford-torus-2"));
+  manifold::Manifold torus(io::read_spec("builtin:clifford-torus-2"));
 
   // 2. An eps-net: points of M at least eps apart, within eps of every point of M.
-  EpsNetOptions net_options;
+  sampling::EpsNetOptions net_options;
   net_options.eps = 0.25;
   net_options.seed = 1;  // same seed, same points
-  EpsNetResult net = eps_net(torus, net_options);
+  sampling::EpsNetResult net = sampling::eps_net(torus, net_options);
 
   // 3. Refine: insert points until every star is thick, protected and small. The constants are
   //    exact rationals (Gamma0, alpha, beta and delta0 keep their defaults).

@@ -269,7 +269,7 @@ RootAnalysis analyse_roots(const UPoly& f_in, const mpq_class& lo, const std::op
   return a;
 }
 
-UPoly restrict_to_line(const Polynomial& F, const std::array<mpq_class, 3>& start,
+UPoly restrict_to_line(const exact::Polynomial& F, const std::array<mpq_class, 3>& start,
                        const std::array<mpq_class, 3>& direction) {
   if (F.num_variables() != 3) throw std::invalid_argument("restrict_to_line: F needs 3 variables");
   std::array<UPoly, 3> x;
@@ -307,7 +307,7 @@ std::vector<Triangle> RestrictedDelaunayReference::degenerate_triangles() const 
   return t;
 }
 
-const Polynomial& surface_equation(const io::ManifoldSpec& spec) {
+const exact::Polynomial& surface_equation(const io::ManifoldSpec& spec) {
   if (spec.ambient_dimension != 3 || spec.intrinsic_dimension != 2 || spec.equations.size() != 1)
     throw std::invalid_argument("restricted Delaunay reference: " + spec.name + " is not a surface in R^3");
   return spec.equations.front();
@@ -372,7 +372,7 @@ IVec interval_circumcentre(const std::array<std::array<double, 3>, 4>& p) {
 
 }  // namespace
 
-RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P, const Polynomial& F) {
+RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P, const exact::Polynomial& F) {
   if (P.dimension != 3) throw std::invalid_argument("restricted Delaunay reference: points must be in R^3");
   if (F.num_variables() != 3) throw std::invalid_argument("restricted Delaunay reference: F needs 3 variables");
   const std::size_t n = P.size();

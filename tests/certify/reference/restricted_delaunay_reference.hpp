@@ -79,7 +79,7 @@ namespace delcert::reference {
 class UPoly {
  public:
   UPoly() = default;
-  UPoly(int c);  // NOLINT: a constant (Polynomial::evaluate_with needs T(0))
+  UPoly(int c);  // NOLINT: a constant (exact::Polynomial::evaluate_with needs T(0))
   explicit UPoly(mpq_class c);
   explicit UPoly(std::vector<mpq_class> coefficients);
   static UPoly linear(const mpq_class& c0, const mpq_class& c1);  // c0 + c1 t
@@ -129,7 +129,7 @@ RootAnalysis analyse_roots(const UPoly& f, const mpq_class& lo, const std::optio
 int count_distinct_roots(const UPoly& f, const mpq_class& lo, const std::optional<mpq_class>& hi);
 
 // F(start + t * direction) exactly.
-UPoly restrict_to_line(const Polynomial& F, const std::array<mpq_class, 3>& start,
+UPoly restrict_to_line(const exact::Polynomial& F, const std::array<mpq_class, 3>& start,
                        const std::array<mpq_class, 3>& direction);
 
 using Triangle = std::array<std::size_t, 3>;  // indices into P, increasing
@@ -168,10 +168,10 @@ struct RestrictedDelaunayReference {
 
 // P must have dimension 3, distinct points, not all coplanar; F must have 3 variables. Throws
 // std::invalid_argument otherwise.
-RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P, const Polynomial& F);
+RestrictedDelaunayReference restricted_delaunay_reference(const io::PointSet& P, const exact::Polynomial& F);
 
 // The single equation of a spec of a surface in R^3 (m = 2, N = 3); throws std::invalid_argument
 // for any other spec.
-const Polynomial& surface_equation(const io::ManifoldSpec& spec);
+const exact::Polynomial& surface_equation(const io::ManifoldSpec& spec);
 
 }  // namespace delcert::reference

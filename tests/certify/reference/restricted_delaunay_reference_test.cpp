@@ -128,7 +128,7 @@ TEST(RestrictedDelaunayReference, SturmAgreesWithKnownRootsOnRandomPolynomials) 
 }
 
 TEST(RestrictedDelaunayReference, RestrictionToALineIsExact) {
-  const Polynomial F = Polynomial::parse("x1^2 + x2^2 + x3^2 - 1", 3);
+  const exact::Polynomial F = exact::Polynomial::parse("x1^2 + x2^2 + x3^2 - 1", 3);
   // (1/2, 0, 0) + t (1, 1/3, 0): (1/2 + t)^2 + t^2/9 - 1.
   const UPoly f = restrict_to_line(F, {q(1, 2), q(0), q(0)}, {q(1), q(1, 3), q(0)});
   EXPECT_EQ(f, UPoly(std::vector<mpq_class>{q(-3, 4), q(1), q(10, 9)}));
@@ -275,7 +275,7 @@ std::vector<std::array<double, 3>> integer_sphere_points(std::size_t n, long N, 
 TEST(RestrictedDelaunayReference, OnASphereDelRMIsTheConvexHull) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   const long N = 1000003;
-  const Polynomial F = Polynomial::parse("x1^2 + x2^2 + x3^2 - " + std::to_string(N * N), 3);
+  const exact::Polynomial F = exact::Polynomial::parse("x1^2 + x2^2 + x3^2 - " + std::to_string(N * N), 3);
   for (std::size_t n : {5u, 40u, 400u, 1200u}) {
     const io::PointSet P = point_set(integer_sphere_points(n, N, 1000 + n));
     const auto t0 = std::chrono::steady_clock::now();
@@ -319,7 +319,7 @@ std::vector<std::array<double, 3>> ellipsoid_points(int n, double a, double b, d
 }
 
 TEST(RestrictedDelaunayReference, OnAnEllipsoidDelRMIsAClosedSurfaceOfEulerCharacteristicTwo) {
-  const Polynomial F = Polynomial::parse("4/9*x1^2 + x2^2 + 16/9*x3^2 - 1", 3);  // a = 3/2, b = 1, c = 3/4
+  const exact::Polynomial F = exact::Polynomial::parse("4/9*x1^2 + x2^2 + 16/9*x3^2 - 1", 3);  // a = 3/2, b = 1, c = 3/4
   for (int n : {300, 1500}) {
     const io::PointSet P = point_set(ellipsoid_points(n, 1.5, 1.0, 0.75, 7 + n));
     const auto t0 = std::chrono::steady_clock::now();
@@ -353,7 +353,7 @@ std::vector<std::array<double, 3>> torus_points(int major, int minor, std::uint6
 
 TEST(RestrictedDelaunayReference, OnATorusDelRMIsAClosedSurfaceOfEulerCharacteristicZero) {
   const io::ManifoldSpec spec = io::read_spec("builtin:torus-of-revolution");
-  const Polynomial& F = surface_equation(spec);
+  const exact::Polynomial& F = surface_equation(spec);
   for (auto [major, minor] : {std::pair{40, 16}, std::pair{48, 18}}) {
     const io::PointSet P = point_set(torus_points(major, minor, 3));
     const auto t0 = std::chrono::steady_clock::now();
@@ -381,7 +381,7 @@ TEST(RestrictedDelaunayReference, TheCubeOnItsCircumsphereIsDegenerate) {
   for (int i = 0; i < 8; ++i) pts.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
   const io::PointSet P = point_set(pts);
   const RestrictedDelaunayReference ref =
-      restricted_delaunay_reference(P, Polynomial::parse("x1^2 + x2^2 + x3^2 - 3", 3));
+      restricted_delaunay_reference(P, exact::Polynomial::parse("x1^2 + x2^2 + x3^2 - 3", 3));
   EXPECT_FALSE(ref.decided());
   EXPECT_TRUE(ref.restricted.empty());
   EXPECT_EQ(ref.degenerate.size(), 12u);  // two triangles per square face
@@ -389,7 +389,7 @@ TEST(RestrictedDelaunayReference, TheCubeOnItsCircumsphereIsDegenerate) {
   EXPECT_GT(ref.cospherical_facets, 0u);
   // The same cube against the plane x3 = 0 through the common circumcentre: every Voronoi edge
   // starts at a Voronoi vertex on M (or is that single point).
-  const RestrictedDelaunayReference plane = restricted_delaunay_reference(P, Polynomial::parse("x3", 3));
+  const RestrictedDelaunayReference plane = restricted_delaunay_reference(P, exact::Polynomial::parse("x3", 3));
   EXPECT_TRUE(plane.restricted.empty());
   EXPECT_EQ(plane.degenerate.size(), plane.delaunay_triangles);
   for (const auto& t : plane.degenerate)
@@ -405,34 +405,34 @@ TEST(RestrictedDelaunayReference, TangencyVertexOnMAndEdgeInMAreNotDecided) {
   // A sphere of radius sqrt(2) centred at (3, 1, 2): at distance sqrt(2) from the line through
   // (2, 2, 2) in direction (1, 1, 1), so tangent to the first ray there; the other rays miss it.
   RestrictedDelaunayReference ref =
-      restricted_delaunay_reference(P, Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 2", 3));
+      restricted_delaunay_reference(P, exact::Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 2", 3));
   EXPECT_TRUE(ref.restricted.empty());
   ASSERT_EQ(ref.degenerate.size(), 1u);
   EXPECT_EQ(ref.degenerate[0].vertices, far);
   EXPECT_EQ(ref.degenerate[0].degeneracy, Degeneracy::tangency);
   // The same sphere with radius^2 = 2 - 1/100 misses the ray; with 2 + 1/100 it cuts it twice.
-  EXPECT_TRUE(restricted_delaunay_reference(P, Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 199/100", 3))
+  EXPECT_TRUE(restricted_delaunay_reference(P, exact::Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 199/100", 3))
                   .restricted.empty());
-  ref = restricted_delaunay_reference(P, Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 201/100", 3));
+  ref = restricted_delaunay_reference(P, exact::Polynomial::parse("(x1-3)^2 + (x2-1)^2 + (x3-2)^2 - 201/100", 3));
   ASSERT_TRUE(ref.decided());
   ASSERT_EQ(ref.restricted.size(), 1u);
   EXPECT_EQ(ref.restricted[0].vertices, far);
   EXPECT_EQ(ref.restricted[0].edge.roots.distinct_roots, 2);
   expect_witnesses(P, ref.restricted);
   // A plane through the circumcentre: every ray starts on M.
-  ref = restricted_delaunay_reference(P, Polynomial::parse("x1 + x2 + x3 - 3/2", 3));
+  ref = restricted_delaunay_reference(P, exact::Polynomial::parse("x1 + x2 + x3 - 3/2", 3));
   EXPECT_TRUE(ref.restricted.empty());
   ASSERT_EQ(ref.degenerate.size(), 4u);
   for (const auto& t : ref.degenerate) EXPECT_EQ(t.degeneracy, Degeneracy::voronoi_vertex_on_manifold);
   // A plane holding the ray of e1 e2 e3: that edge lies in M.
-  ref = restricted_delaunay_reference(P, Polynomial::parse("x1 + x2 - 2*x3", 3));
+  ref = restricted_delaunay_reference(P, exact::Polynomial::parse("x1 + x2 - 2*x3", 3));
   ASSERT_EQ(ref.degenerate.size(), 4u);
   for (const auto& t : ref.degenerate)
     EXPECT_EQ(t.degeneracy, t.vertices == far ? Degeneracy::edge_in_manifold : Degeneracy::voronoi_vertex_on_manifold);
 }
 
 TEST(RestrictedDelaunayReference, RefusesInputItCannotTriangulate) {
-  const Polynomial F = Polynomial::parse("x1^2 + x2^2 + x3^2 - 1", 3);
+  const exact::Polynomial F = exact::Polynomial::parse("x1^2 + x2^2 + x3^2 - 1", 3);
   EXPECT_THROW(restricted_delaunay_reference(point_set({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}), F),
                std::invalid_argument);
   EXPECT_THROW(restricted_delaunay_reference(point_set({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}}), F),
