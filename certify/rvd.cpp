@@ -76,7 +76,7 @@ class CellAnalysis {
  public:
   CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const PointGrid& grid, int p,
                const RestrictedCellOptions& options)
-      : p_(p), opt_(options),
+      : points_(points), p_(p), opt_(options),
         chart_(exact::ChartEnclosure::at(system, points.point(p))),
         N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
     if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
@@ -125,16 +125,33 @@ class CellAnalysis {
     Work root;
     root.U.assign(m_, Interval{-rho_u_, rho_u_});
     for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
-    std::vector<Work> stack{root};
-    while (!stack.empty()) {
-      Work w = std::move(stack.back());
-      stack.pop_back();
-      if (report_.boxes >= opt_.max_boxes) {
-        undecided(w, box_centre(w.U, Box(k_, Interval{0, 0})), "box budget exhausted");
-        continue;
+    auto subdivide = [&](std::vector<Work> stack) {
+      while (!stack.empty()) {
+        Work w = std::move(stack.back());
+        stack.pop_back();
+        if (report_.boxes >= opt_.max_boxes) {
+          undecided(w, box_centre(w.U, Box(k_, Interval{0, 0})), "box budget exhausted");
+          continue;
+        }
+        visit(std::move(w), stack);
       }
-      visit(std::move(w), stack);
+    };
+    subdivide({root});
+    // Second pass: the resolved boxes kept for covering refinement. A box whose bound is at most
+    // the distance from p to a vertex found (a point of the cell) need not be refined: the
+    // largest bound is attained elsewhere or is already that close. (Only the work depends on
+    // this; every kept box still contributes its own certified bound.)
+    refining_ = true;
+    {
+      exact::UpwardRounding up;
+      for (const auto& v : report_.vertices) {
+        IA d(0);
+        for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
+        refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
+      }
     }
+    std::reverse(pending_.begin(), pending_.end());
+    subdivide(std::move(pending_));
     finish();
     return std::move(report_);
   }
@@ -252,9 +269,14 @@ class CellAnalysis {
     if (n == m_ + 1 && chart_slab) resolved = krawczyk_vertex(w, H);
     double widest = 0;
     for (const auto& i : w.U) widest = std::max(widest, i.width());
-    const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_;
-    if (resolved && (fine || w.depth >= opt_.max_depth)) {
-      const double bound = exact::sqrt(d2).sup();
+    const double bound = exact::sqrt(d2).sup();
+    const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_ || w.depth >= opt_.max_depth ||
+                      (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
+    if (resolved && !fine && !refining_) {
+      pending_.push_back(std::move(w));
+      return;
+    }
+    if (resolved && fine) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {
         report_.covering_bound = bound;
         report_.covering_location = box_centre(w.U, H);
@@ -351,8 +373,12 @@ class CellAnalysis {
     report_.complete = report_.reason.empty();
   }
 
+  const io::PointSet& points_;
   int p_;
   RestrictedCellOptions opt_;
+  bool refining_ = false;     // second pass (covering refinement)
+  double refine_below_ = 0;   // max distance from p to a vertex found (a lower bound)
+  std::vector<Work> pending_; // resolved boxes left for the second pass
   exact::ChartEnclosure chart_;
   int N_, m_, k_;
   std::vector<Interval> T_enc_, N_enc_;
