@@ -76,7 +76,7 @@ class CellAnalysis {
  public:
   CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const PointGrid& grid, int p,
                const RestrictedCellOptions& options)
-      : points_(points), p_(p), opt_(options),
+      : points_(points), grid_(grid), p_(p), opt_(options),
         chart_(exact::ChartEnclosure::at(system, points.point(p))),
         N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
     if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
@@ -336,7 +336,33 @@ class CellAnalysis {
       const Box U(kr.box.begin(), kr.box.begin() + m_), Hv(kr.box.begin() + m_, kr.box.end());
       Box X;
       if (!chart_.image(U, Hv, X)) return false;
+      if (!separated(simplex, X)) return false;
       report_.vertices.push_back({simplex, std::move(X)});
+    }
+    return true;
+  }
+
+  // Direct check, independent of the graph assumption and of the candidate sets: every point of P
+  // outside `simplex` is strictly farther than p from every x in X. A point q with
+  // d(x, q) <= d(x, p) has |q - c| <= d(q, x) + d(x, c) <= d(x, p) + d(x, c) (c the centre of X),
+  // so grid.ball(c, sup |x - p| + sup |x - c|) holds every such q. Under upward rounding.
+  bool separated(const std::vector<int>& simplex, const Box& X) const {
+    std::vector<double> c(N_);
+    IA dp(0), dc(0);
+    for (int v = 0; v < N_; ++v) {
+      c[v] = X[v].midpoint();
+      dp += exact::square(ia(X[v]) - IA(points_.point(p_)[v]));
+      dc += exact::square(ia(X[v]) - IA(c[v]));
+    }
+    const double R = (exact::sqrt(dp) + exact::sqrt(dc)).sup();
+    for (int q : grid_.ball(c, R)) {
+      if (std::binary_search(simplex.begin(), simplex.end(), q)) continue;
+      IA s(0);  // |q - p|^2 - 2 (x - p).(q - p) = d(x, q)^2 - d(x, p)^2
+      for (int v = 0; v < N_; ++v) {
+        const IA d = IA(points_.point(q)[v]) - IA(points_.point(p_)[v]);
+        s += exact::square(d) - IA(2) * (ia(X[v]) - IA(points_.point(p_)[v])) * d;
+      }
+      if (!(s.inf() > 0)) return false;
     }
     return true;
   }
@@ -374,6 +400,7 @@ class CellAnalysis {
   }
 
   const io::PointSet& points_;
+  const PointGrid& grid_;
   int p_;
   RestrictedCellOptions opt_;
   bool refining_ = false;     // second pass (covering refinement)

@@ -50,9 +50,11 @@
 // PROVIDED M ∩ Vor(p) does not also have a component beyond r (excluded globally by the
 // open-and-closed argument of §2b over all points: the caller's job). If covering_bound >= r the
 // report says "cell reaches the chart boundary" (complete = false).
-// Each vertex found is a point of M (unique root in its enclosure) equidistant from the m + 1
-// points of its simplex and, under the graph assumption, strictly closer to them than to any
-// other point of P.
+// Each vertex found is certified WITHOUT the graph assumption: a point of M (the unique root of
+// {G = 0, equidistance} in its enclosure, Krawczyk) equidistant from the m + 1 points of its
+// simplex, and every other point of P is checked directly (grid ball around the enclosure, signs
+// in interval arithmetic) to be strictly farther: the simplex is in Del_RM(P). A root that fails
+// that check is not reported (its box is split on, and ends UNDECIDED at the depth limit).
 //
 // Deterministic: one point, sequential depth-first subdivision; no dependence on thread count.
 #pragma once

@@ -5,6 +5,7 @@
 
 #include <gmpxx.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -28,6 +29,7 @@ CellRuns analyse_all(const std::string& equation, const io::PointSet& P, double 
   const exact::ImplicitSystem F = exact::ImplicitSystem::parse({equation}, 3);
   const PointGrid grid(P, 2);
   RestrictedCellOptions opt;
+  const auto start = std::chrono::steady_clock::now();  // printed only, never asserted
   opt.graph_radius = r;
   opt.max_depth = max_depth;
   CellRuns out;
@@ -35,6 +37,8 @@ CellRuns analyse_all(const std::string& equation, const io::PointSet& P, double 
     out.cells.push_back(analyse_restricted_cell(F, P, grid, static_cast<int>(p), opt));
     for (const auto& v : out.cells.back().vertices) out.simplices.insert(v.simplex);
   }
+  std::printf("%zu cells in %.3f s\n", P.size(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return out;
 }
 
