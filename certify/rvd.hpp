@@ -71,7 +71,7 @@ namespace delcert::certify {
 
 struct RestrictedCellOptions {
   double graph_radius = 0;      // r > 0 (see THE GRAPH ASSUMPTION)
-  int max_depth = 12;           // subdivision depth limit (each level halves every side of U)
+  int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
   long max_boxes = 200000;      // boxes visited per point; beyond it the rest is undecided
   // Kept boxes with more candidates than p are split further while their widest u-side exceeds
   // this fraction of rho_u (sharpens covering_bound near the cell's boundary); 0: never.
