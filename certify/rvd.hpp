@@ -73,8 +73,9 @@ struct RestrictedCellOptions {
   double graph_radius = 0;      // r > 0 (see THE GRAPH ASSUMPTION)
   int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
   long max_boxes = 200000;      // boxes visited per point; beyond it the rest is undecided
-  // Kept boxes with more candidates than p are split further while their widest u-side exceeds
-  // this fraction of rho_u (sharpens covering_bound near the cell's boundary); 0: never.
+  // Kept boxes with more candidates than p are split further (second pass) while their widest
+  // u-side exceeds this fraction of rho_u and their bound exceeds the distance from p to the
+  // farthest vertex found (sharpens covering_bound near the cell's corners; work only).
   double covering_width = 1.0 / 128;
   // Where the chart fails, the normal slab H_ball(U) is searched by halving up to this many times.
   int normal_levels = 6;
