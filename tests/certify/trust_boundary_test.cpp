@@ -103,7 +103,8 @@ long check_directory(const std::string& dir, const std::vector<std::string>& all
 }
 
 TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 4000) << "certify/ should stay small enough to read whole";
+  // 5000: the certified RVD engine (certify/rvd.*) is part of the checker by design (issue 11).
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 5000) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

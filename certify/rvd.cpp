@@ -1,0 +1,428 @@
+#include "certify/rvd.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "exact/chart.hpp"
+#include "exact/interval_arithmetic.hpp"
+#include "exact/krawczyk.hpp"
+#include "exact/number_types.hpp"
+
+namespace delcert::certify {
+
+namespace {
+
+using exact::Box;
+using exact::Interval;
+using IA = exact::IntervalNumber;
+
+IA ia(const Interval& i) { return exact::to_interval_number(i); }
+
+// A certified lower bound (> 0) of the smallest eigenvalue of the exact Gram matrix of the
+// columns of A (rows x cols): the larger of Gershgorin's bound and det / trace^(cols - 1) (the
+// product of the other eigenvalues is at most trace^(cols - 1)). Throws std::domain_error when
+// neither is positive.
+mpq_class smallest_eigenvalue_bound(const std::vector<mpq_class>& A, int rows, int cols) {
+  std::vector<mpq_class> G(static_cast<std::size_t>(cols) * cols);
+  for (int a = 0; a < cols; ++a)
+    for (int b = 0; b < cols; ++b)
+      for (int v = 0; v < rows; ++v) G[a * cols + b] += A[v * cols + a] * A[v * cols + b];
+  mpq_class gersh = -1, trace = 0;
+  for (int a = 0; a < cols; ++a) {
+    mpq_class row = G[a * cols + a];
+    for (int b = 0; b < cols; ++b)
+      if (b != a) row -= abs(G[a * cols + b]);
+    if (a == 0 || row < gersh) gersh = row;
+    trace += G[a * cols + a];
+  }
+  // det G by exact Gaussian elimination (G is positive semidefinite: a zero pivot means det 0).
+  std::vector<mpq_class> E = G;
+  mpq_class det = 1;
+  for (int c = 0; c < cols && det != 0; ++c) {
+    det *= E[c * cols + c];
+    if (det == 0) break;
+    for (int r = c + 1; r < cols; ++r) {
+      const mpq_class f = E[r * cols + c] / E[c * cols + c];
+      for (int j = c; j < cols; ++j) E[r * cols + j] -= f * E[c * cols + j];
+    }
+  }
+  mpq_class bound = det;
+  for (int i = 1; i < cols; ++i) bound /= trace;
+  bound = std::max(bound, gersh);
+  if (bound <= 0) throw std::domain_error("restricted cell: cannot bound the chart's Gram matrix away from 0");
+  return bound;
+}
+
+// A candidate q relative to p: s_q(u, h) = |q|^2 - |p|^2 - 2 x.(q - p) = c - 2 a.u - 2 b.h with
+// d = q - p, c = |d|^2, a = T^T d, b = Nn^T d (x = p + T u + Nn h); exact and enclosed.
+struct Candidate {
+  int index = -1;
+  mpq_class c;
+  std::vector<mpq_class> a, b;
+  std::vector<Interval> c_enc, a_enc, b_enc;
+};
+
+struct Work {
+  Box U;
+  std::vector<double> hint;  // centre of the parent's slab (empty at the root)
+  std::vector<int> S;       // positions in `cands` of the candidates other than p
+  int depth = 0;
+};
+
+class CellAnalysis {
+ public:
+  CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const PointGrid& grid, int p,
+               const RestrictedCellOptions& options)
+      : points_(points), grid_(grid), p_(p), opt_(options),
+        chart_(exact::ChartEnclosure::at(system, points.point(p))),
+        N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
+    if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
+    std::vector<mpq_class> T(N_ * m_), Nn(N_ * k_);
+    for (int v = 0; v < N_; ++v) {
+      for (int a = 0; a < m_; ++a) T[v * m_ + a] = chart_.tangent(v, a), T_enc_.push_back(exact::enclose(T[v * m_ + a]));
+      for (int l = 0; l < k_; ++l) Nn[v * k_ + l] = chart_.normal(v, l), N_enc_.push_back(exact::enclose(Nn[v * k_ + l]));
+    }
+    const double gT = exact::enclose(smallest_eigenvalue_bound(T, N_, m_)).lo;
+    const double gN = gN_ = exact::enclose(smallest_eigenvalue_bound(Nn, N_, k_)).lo;
+    if (!(gT > 0 && gN > 0)) throw std::domain_error("restricted cell: the chart's Gram matrix is too ill-conditioned");
+    {
+      exact::UpwardRounding up;  // rho = r / sqrt(g) rounded up: |u_a| <= |u| <= |T u| / sqrt(g_T) < rho_u
+      rho_u_ = (IA(options.graph_radius) / exact::sqrt(IA(gT))).sup();
+      r2_ = IA(options.graph_radius) * IA(options.graph_radius);
+    }
+    G_ = chart_.chart_system().equations();
+    for (const auto& g : G_) {
+      G_coef_.emplace_back();
+      for (const auto& t : g.terms()) G_coef_.back().push_back(exact::enclose(t.coefficient));
+    }
+    // Candidates: every point of the closed ball B(p, 2r) (see the header); 2r is exact.
+    const std::span<const double> pp = points.point(p);
+    for (int q : grid.ball(pp, 2 * options.graph_radius)) {
+      if (q == p) continue;
+      Candidate C;
+      C.index = q;
+      std::vector<mpq_class> d(N_);
+      for (int v = 0; v < N_; ++v) d[v] = exact::to_rational(points.point(q)[v]) - exact::to_rational(pp[v]);
+      for (int v = 0; v < N_; ++v) C.c += d[v] * d[v];
+      C.a.assign(m_, 0);
+      C.b.assign(k_, 0);
+      for (int v = 0; v < N_; ++v) {
+        for (int a = 0; a < m_; ++a) C.a[a] += T[v * m_ + a] * d[v];
+        for (int l = 0; l < k_; ++l) C.b[l] += Nn[v * k_ + l] * d[v];
+      }
+      C.c_enc = {exact::enclose(C.c)};
+      for (const auto& x : C.a) C.a_enc.push_back(exact::enclose(x));
+      for (const auto& x : C.b) C.b_enc.push_back(exact::enclose(x));
+      cands_.push_back(std::move(C));
+    }
+  }
+
+  RestrictedCellReport run() {
+    report_.point = p_;
+    Work root;
+    root.U.assign(m_, Interval{-rho_u_, rho_u_});
+    for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
+    auto subdivide = [&](std::vector<Work> stack) {
+      while (!stack.empty()) {
+        Work w = std::move(stack.back());
+        stack.pop_back();
+        if (report_.boxes >= opt_.max_boxes) {
+          undecided(w, box_centre(w.U, Box(k_, Interval{0, 0})), "box budget exhausted");
+          continue;
+        }
+        visit(std::move(w), stack);
+      }
+    };
+    subdivide({root});
+    // Second pass: the resolved boxes kept for covering refinement. A box whose bound is at most
+    // the distance from p to a vertex found (a point of the cell) need not be refined: the
+    // largest bound is attained elsewhere or is already that close. (Only the work depends on
+    // this; every kept box still contributes its own certified bound.)
+    refining_ = true;
+    {
+      exact::UpwardRounding up;
+      for (const auto& v : report_.vertices) {
+        IA d(0);
+        for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
+        refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
+      }
+    }
+    std::reverse(pending_.begin(), pending_.end());
+    subdivide(std::move(pending_));
+    finish();
+    return std::move(report_);
+  }
+
+ private:
+  // Interval hull of s_q over U x H.
+  IA sign_form(const Candidate& C, const Box& U, const Box& H) const {
+    IA s = ia(C.c_enc[0]);
+    for (int a = 0; a < m_; ++a) s -= IA(2) * ia(C.a_enc[a]) * ia(U[a]);
+    for (int l = 0; l < k_; ++l) s -= IA(2) * ia(C.b_enc[l]) * ia(H[l]);
+    return s;
+  }
+  // Enclosure of |x - p|^2 = |T u + Nn h|^2 over U x H.
+  IA dist2(const Box& U, const Box& H) const {
+    IA s(0);
+    for (int v = 0; v < N_; ++v) {
+      IA t(0);
+      for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
+      for (int l = 0; l < k_; ++l) t += ia(N_enc_[v * k_ + l]) * ia(H[l]);
+      s += exact::square(t);
+    }
+    return s;
+  }
+  std::vector<double> box_centre(const Box& U, const Box& H) const {
+    Box X;
+    std::vector<double> c(N_);
+    Box Uc(m_), Hc(k_);
+    for (int a = 0; a < m_; ++a) Uc[a] = Interval::point(U[a].midpoint());
+    for (int l = 0; l < k_; ++l) Hc[l] = Interval::point(H[l].midpoint());
+    if (chart_.image(Uc, Hc, X))
+      for (int v = 0; v < N_; ++v) c[v] = X[v].midpoint();
+    return c;
+  }
+  std::vector<int> simplex_of(const std::vector<int>& S) const {
+    std::vector<int> s{p_};
+    for (int i : S) s.push_back(cands_[i].index);
+    std::sort(s.begin(), s.end());
+    return s;
+  }
+  void undecided(const Work& w, std::vector<double> location, std::string reason) {
+    report_.undecided.push_back({std::move(location), simplex_of(w.S), std::move(reason)});
+  }
+
+  // True when no point of M ∩ B(p, r) over U with normal coordinate in H is in the Voronoi cell of
+  // p: either the box is outside the ball, or some G_i has no zero on it (no point of M), or some
+  // candidate is certainly closer on all of it; else H is halved along its widest side, up to
+  // `levels` times (an ambient search in the normal directions). Under upward rounding.
+  bool excluded(const Box& U, Box H, const std::vector<int>& S, int levels) const {
+    if (dist2(U, H).inf() >= r2_.sup()) return true;
+    std::vector<IA> z;
+    for (const auto& i : U) z.push_back(ia(i));
+    for (const auto& i : H) z.push_back(ia(i));
+    for (std::size_t e = 0; e < G_.size(); ++e) {
+      const IA g = G_[e].evaluate_with<IA>(z, [&](std::size_t t) { return ia(G_coef_[e][t]); });
+      if (g.inf() > 0 || g.sup() < 0) return true;
+    }
+    for (int i : S)
+      if (sign_form(cands_[i], U, H).sup() < 0) return true;
+    if (levels == 0) return false;
+    int wide = 0;
+    for (int l = 1; l < k_; ++l)
+      if (H[l].width() > H[wide].width()) wide = l;
+    Box H2 = H;
+    const double mid = H[wide].midpoint();
+    H[wide].hi = mid;
+    H2[wide].lo = mid;
+    return excluded(U, H, S, levels - 1) && excluded(U, H2, S, levels - 1);
+  }
+
+  void visit(Work w, std::vector<Work>& stack) {
+    ++report_.boxes;
+    report_.max_depth = std::max(report_.max_depth, w.depth);
+    // The slab: the chart's, when unique and inside B(p, r); else H_ball(U) = [-b, b]^k with
+    // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
+    const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
+    exact::UpwardRounding up;
+    Box H;
+    const bool chart_slab = ch.status == exact::ChartStatus::unique && dist2(w.U, ch.H).sup() < r2_.inf();
+    if (chart_slab) {
+      H = ch.H;
+    } else {
+      ++report_.chart_failures;
+      const IA room = r2_ - dist2(w.U, Box(k_, Interval{0, 0}));
+      if (room.sup() <= 0) {  // |T u| >= r over U: outside the ball
+        ++report_.discarded;
+        return;
+      }
+      const double b = exact::sqrt(IA(0, room.sup()) / IA(gN_)).sup();
+      H.assign(k_, Interval{-b, b});
+      if (excluded(w.U, H, w.S, opt_.normal_levels)) {
+        ++report_.discarded;
+        return;
+      }
+    }
+    IA d2;
+    {
+      if (dist2(w.U, H).inf() >= r2_.sup()) {
+        ++report_.discarded;
+        return;
+      }
+      std::vector<int> kept;
+      for (int i : w.S) {
+        const IA s = sign_form(cands_[i], w.U, H);
+        if (s.sup() < 0) {  // q certainly closer than p on all of U x H
+          ++report_.discarded;
+          return;
+        }
+        if (!(s.inf() > 0)) kept.push_back(i);
+      }
+      w.S = std::move(kept);
+      d2 = dist2(w.U, H);
+    }
+    const int n = static_cast<int>(w.S.size()) + 1;
+    bool resolved = n <= m_;  // no restricted Voronoi vertex can lie here
+    if (n == m_ + 1 && chart_slab) resolved = krawczyk_vertex(w, H);
+    double widest = 0;
+    for (const auto& i : w.U) widest = std::max(widest, i.width());
+    const double bound = exact::sqrt(d2).sup();
+    const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_ || w.depth >= opt_.max_depth ||
+                      (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
+    if (resolved && !fine && !refining_) {
+      pending_.push_back(std::move(w));
+      return;
+    }
+    if (resolved && fine) {
+      if (bound > report_.covering_bound || report_.covering_location.empty()) {
+        report_.covering_bound = bound;
+        report_.covering_location = box_centre(w.U, H);
+      }
+      return;
+    }
+    if (w.depth >= opt_.max_depth) {
+      undecided(w, box_centre(w.U, H),
+                n > m_ + 1 ? "more than m + 1 candidates at the depth limit"
+                           : (chart_slab ? "Krawczyk undecided at the depth limit" : "no chart enclosure at the depth limit"));
+      return;
+    }
+    // Split every side at its midpoint; children pushed in reverse so that the first is visited first.
+    std::vector<double> hint(k_);
+    for (int l = 0; l < k_; ++l) hint[l] = H[l].midpoint();
+    std::vector<Work> children;
+    for (int corner = 0; corner < (1 << m_); ++corner) {
+      Work c;
+      c.U = w.U;
+      for (int a = 0; a < m_; ++a) {
+        const double mid = w.U[a].midpoint();
+        c.U[a] = (corner >> a) & 1 ? Interval{mid, w.U[a].hi} : Interval{w.U[a].lo, mid};
+      }
+      c.S = w.S;
+      c.depth = w.depth + 1;
+      if (chart_slab) c.hint = hint;
+      children.push_back(std::move(c));
+    }
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(std::move(*it));
+  }
+
+  // Krawczyk on {G = 0, s_{q_i} = 0} in U x H. True when decided (a vertex recorded, or none).
+  bool krawczyk_vertex(const Work& w, const Box& H) {
+    const std::vector<int> simplex = simplex_of(w.S);
+    auto it = systems_.find(simplex);
+    if (it == systems_.end()) {
+      std::vector<Polynomial> eqs = chart_.chart_system().equations();
+      const int vars = m_ + k_;
+      for (int i : w.S) {
+        const Candidate& C = cands_[i];
+        Polynomial s = Polynomial::constant(C.c, vars);
+        for (int a = 0; a < m_; ++a) s = s - Polynomial::variable(a, vars).scaled(mpq_class(2 * C.a[a]));
+        for (int l = 0; l < k_; ++l) s = s - Polynomial::variable(m_ + l, vars).scaled(mpq_class(2 * C.b[l]));
+        eqs.push_back(std::move(s));
+      }
+      it = systems_.emplace(simplex, exact::SquareSystem(std::move(eqs))).first;
+    }
+    Box UH = w.U;
+    UH.insert(UH.end(), H.begin(), H.end());
+    ++report_.krawczyk_calls;
+    const exact::KrawczykResult kr = exact::krawczyk(it->second, UH);
+    if (kr.status == exact::RootStatus::undecided) {
+      ++report_.krawczyk_failures;
+      return false;
+    }
+    if (kr.status == exact::RootStatus::unique_root) {
+      const Box U(kr.box.begin(), kr.box.begin() + m_), Hv(kr.box.begin() + m_, kr.box.end());
+      Box X;
+      if (!chart_.image(U, Hv, X)) return false;
+      if (!separated(simplex, X)) return false;
+      report_.vertices.push_back({simplex, std::move(X)});
+    }
+    return true;
+  }
+
+  // Direct check, independent of the graph assumption and of the candidate sets: every point of P
+  // outside `simplex` is strictly farther than p from every x in X. A point q with
+  // d(x, q) <= d(x, p) has |q - c| <= d(q, x) + d(x, c) <= d(x, p) + d(x, c) (c the centre of X),
+  // so grid.ball(c, sup |x - p| + sup |x - c|) holds every such q. Under upward rounding.
+  bool separated(const std::vector<int>& simplex, const Box& X) const {
+    std::vector<double> c(N_);
+    IA dp(0), dc(0);
+    for (int v = 0; v < N_; ++v) {
+      c[v] = X[v].midpoint();
+      dp += exact::square(ia(X[v]) - IA(points_.point(p_)[v]));
+      dc += exact::square(ia(X[v]) - IA(c[v]));
+    }
+    const double R = (exact::sqrt(dp) + exact::sqrt(dc)).sup();
+    for (int q : grid_.ball(c, R)) {
+      if (std::binary_search(simplex.begin(), simplex.end(), q)) continue;
+      IA s(0);  // |q - p|^2 - 2 (x - p).(q - p) = d(x, q)^2 - d(x, p)^2
+      for (int v = 0; v < N_; ++v) {
+        const IA d = IA(points_.point(q)[v]) - IA(points_.point(p_)[v]);
+        s += exact::square(d) - IA(2) * (ia(X[v]) - IA(points_.point(p_)[v])) * d;
+      }
+      if (!(s.inf() > 0)) return false;
+    }
+    return true;
+  }
+
+  static bool overlap(const Box& a, const Box& b) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].hi < b[i].lo || b[i].hi < a[i].lo) return false;
+    return true;
+  }
+
+  // Sort the vertices; a root on a face shared by two boxes is found twice: of overlapping
+  // enclosures of the same simplex keep the first (each holds a genuine vertex; for Del_RM only
+  // the simplex matters, and two distinct vertices of one simplex this close are not told apart).
+  void finish() {
+    auto& V = report_.vertices;
+    std::sort(V.begin(), V.end(), [](const auto& x, const auto& y) {
+      if (x.simplex != y.simplex) return x.simplex < y.simplex;
+      for (std::size_t i = 0; i < x.x.size(); ++i)
+        if (x.x[i].lo != y.x[i].lo) return x.x[i].lo < y.x[i].lo;
+      return false;
+    });
+    std::vector<RestrictedVoronoiVertex> out;
+    for (auto& v : V) {
+      bool dup = false;
+      for (auto& o : out)
+        if (o.simplex == v.simplex && overlap(o.x, v.x)) dup = true;
+      if (!dup) out.push_back(std::move(v));
+    }
+    V = std::move(out);
+    if (!report_.undecided.empty())
+      report_.reason = std::to_string(report_.undecided.size()) + " undecided boxes";
+    else if (!(report_.covering_bound < opt_.graph_radius))
+      report_.reason = "cell reaches the chart boundary";
+    report_.complete = report_.reason.empty();
+  }
+
+  const io::PointSet& points_;
+  const PointGrid& grid_;
+  int p_;
+  RestrictedCellOptions opt_;
+  bool refining_ = false;     // second pass (covering refinement)
+  double refine_below_ = 0;   // max distance from p to a vertex found (a lower bound)
+  std::vector<Work> pending_; // resolved boxes left for the second pass
+  exact::ChartEnclosure chart_;
+  int N_, m_, k_;
+  std::vector<Interval> T_enc_, N_enc_;
+  double rho_u_ = 0, gN_ = 0;
+  IA r2_;                                        // r^2, enclosed
+  std::vector<Polynomial> G_;                    // the chart equations G(u, h)
+  std::vector<std::vector<Interval>> G_coef_;    // their coefficients, enclosed
+  std::vector<Candidate> cands_;
+  std::map<std::vector<int>, exact::SquareSystem> systems_;
+  RestrictedCellReport report_;
+};
+
+}  // namespace
+
+RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
+                                             const PointGrid& grid, int p, const RestrictedCellOptions& options) {
+  return CellAnalysis(system, points, grid, p, options).run();
+}
+
+}  // namespace delcert::certify

@@ -1,0 +1,183 @@
+// The certified restricted Voronoi cells (certify/rvd.hpp) against known answers on spheres.
+#include "certify/rvd.hpp"
+
+#include <gtest/gtest.h>
+
+#include <gmpxx.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "exact/number_types.hpp"
+#include "io/points.hpp"
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+using Simplex = std::vector<int>;
+
+struct CellRuns {
+  std::vector<RestrictedCellReport> cells;
+  std::set<Simplex> simplices;  // union over the cells
+};
+
+CellRuns analyse_all(const std::string& equation, const io::PointSet& P, double r, int max_depth = 24) {
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({equation}, 3);
+  const PointGrid grid(P, 2);
+  RestrictedCellOptions opt;
+  const auto start = std::chrono::steady_clock::now();  // printed only, never asserted
+  opt.graph_radius = r;
+  opt.max_depth = max_depth;
+  CellRuns out;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    out.cells.push_back(analyse_restricted_cell(F, P, grid, static_cast<int>(p), opt));
+    for (const auto& v : out.cells.back().vertices) out.simplices.insert(v.simplex);
+  }
+  std::printf("%zu cells in %.3f s\n", P.size(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return out;
+}
+
+// The facets of the convex hull by brute force: a triangle is a facet iff every other point is on
+// one side of its plane (exact orientation in rationals; the samples are in general position).
+std::set<Simplex> hull_facets(const io::PointSet& P) {
+  const int n = static_cast<int>(P.size());
+  std::vector<std::array<mpq_class, 3>> Q(n);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) Q[i][k] = exact::to_rational(P.point(i)[k]);
+  auto orient = [&](int a, int b, int c, int d) {
+    mpq_class u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) u[k] = Q[b][k] - Q[a][k], v[k] = Q[c][k] - Q[a][k], w[k] = Q[d][k] - Q[a][k];
+    const mpq_class det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                          u[2] * (v[0] * w[1] - v[1] * w[0]);
+    return sgn(det);
+  };
+  std::set<Simplex> out;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c) {
+        bool pos = false, neg = false;
+        for (int d = 0; d < n && !(pos && neg); ++d) {
+          if (d == a || d == b || d == c) continue;
+          const int s = orient(a, b, c, d);
+          EXPECT_NE(s, 0) << "sample not in general position";
+          pos = pos || s > 0;
+          neg = neg || s < 0;
+        }
+        if (!(pos && neg)) out.insert({a, b, c});
+      }
+  return out;
+}
+
+void expect_consistent(const CellRuns& cells_run) {
+  // Every vertex found at p is also found at its other vertices (the free cross-check of §2b).
+  for (std::size_t p = 0; p < cells_run.cells.size(); ++p)
+    for (const auto& v : cells_run.cells[p].vertices)
+      for (int q : v.simplex) {
+        bool found = false;
+        for (const auto& w : cells_run.cells[q].vertices) found = found || w.simplex == v.simplex;
+        EXPECT_TRUE(found) << "vertex of simplex at " << p << " not found at " << q;
+      }
+}
+
+TEST(RestrictedCell, OctahedronOnTheUnitSphere) {
+  const io::PointSet P = io::read_points(fixture("points/octahedron.off"));
+  ASSERT_EQ(P.size(), 6u);
+  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 1", P, 1.2);  // graph radius of S^2: sqrt 2
+  const double eps = std::sqrt(2 - 2 / std::sqrt(3.0));
+  const double c = 1 / std::sqrt(3.0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const auto& R = cells_run.cells[p];
+    EXPECT_TRUE(R.complete) << p << ": " << R.reason;
+    ASSERT_EQ(R.vertices.size(), 4u) << p;
+    for (const auto& v : R.vertices) {
+      // The vertex of {a, b, c} is (sum of the three points) / sqrt 3: enclosed by the box.
+      for (int k = 0; k < 3; ++k) {
+        double s = 0;
+        for (int q : v.simplex) s += P.point(q)[k];
+        EXPECT_TRUE(v.x[k].lo <= s * c + 1e-12 && s * c - 1e-12 <= v.x[k].hi) << p;
+        EXPECT_LT(v.x[k].width(), 1e-9);
+      }
+    }
+    EXPECT_GE(R.covering_bound, eps);
+    EXPECT_LE(R.covering_bound, 1.05 * eps);
+  }
+  // The 8 faces of the octahedron: one point from each axis pair {0,1}, {2,3}, {4,5}.
+  std::set<Simplex> faces;
+  for (int a : {0, 1})
+    for (int b : {2, 3})
+      for (int d : {4, 5}) faces.insert({a, b, d});
+  EXPECT_EQ(cells_run.simplices, faces);
+  expect_consistent(cells_run);
+}
+
+TEST(RestrictedCell, RandomSphereSampleGivesTheConvexHull) {
+  const io::PointSet P = spread_sphere(3, 60, 0.3, 11);
+  ASSERT_EQ(P.size(), 60u);
+  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 1", P, 0.9);
+  long boxes = 0, calls = 0, failures = 0;
+  double eps = 0;
+  for (const auto& R : cells_run.cells) {
+    EXPECT_TRUE(R.complete) << R.point << ": " << R.reason;
+    boxes += R.boxes, calls += R.krawczyk_calls, failures += R.krawczyk_failures;
+    eps = std::max(eps, R.covering_bound);
+  }
+  std::printf("sphere sample, %zu points: %.1f boxes/point, %.1f Krawczyk calls/point, %ld failures, eps <= %.4f\n",
+              P.size(), double(boxes) / P.size(), double(calls) / P.size(), failures, eps);
+  EXPECT_EQ(cells_run.simplices, hull_facets(P));
+  expect_consistent(cells_run);
+}
+
+TEST(RestrictedCell, CoveringBoundSeesAHole) {
+  const double theta = 0.7;
+  const io::PointSet all = spread_sphere(3, 60, 0.3, 12);
+  io::PointSet P;
+  P.dimension = 3;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (all.point(i)[2] < std::cos(theta)) P.push_back(all.point(i));
+  ASSERT_LT(P.size(), all.size());
+  // The ring of points left around the cap is nearly cocircular: near the pole two restricted
+  // Voronoi vertices are ~1e-3 apart; depth 12 cannot separate them (UNDECIDED), 24 (default) can.
+  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 1", P, 1.3);
+  double eps = 0, to_pole = 1e9;
+  for (const auto& R : cells_run.cells) {
+    EXPECT_TRUE(R.complete) << R.point << ": " << R.reason;
+    eps = std::max(eps, R.covering_bound);
+  }
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const auto q = P.point(i);
+    to_pole = std::min(to_pole, std::sqrt(q[0] * q[0] + q[1] * q[1] + (q[2] - 1) * (q[2] - 1)));
+  }
+  // The true covering radius is at least d(pole, P), itself at least the cap's chord.
+  EXPECT_GE(to_pole, 2 * std::sin(theta / 2));
+  EXPECT_GE(eps, to_pole);
+  std::printf("hole of angular radius %.2f: eps <= %.4f, d(pole, P) = %.4f\n", theta, eps, to_pole);
+  expect_consistent(cells_run);
+}
+
+TEST(RestrictedCell, CubeOnItsSphereIsNeverDecided) {
+  // Exactly degenerate: the centre of each face of the cube is equidistant from its 4 vertices.
+  std::vector<std::vector<double>> pts;
+  for (int i = 0; i < 8; ++i) pts.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
+  const io::PointSet P = make_points(3, pts);
+  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 3", P, 2.2);  // graph radius sqrt 6
+  for (const auto& R : cells_run.cells) {
+    EXPECT_FALSE(R.complete) << R.point;
+    EXPECT_TRUE(R.vertices.empty()) << R.point;  // no triangle is ever claimed
+    ASSERT_FALSE(R.undecided.empty()) << R.point;
+    for (const auto& u : R.undecided) {
+      EXPECT_EQ(u.candidates.size(), 4u);
+      // Located at a face centre (+-sqrt 3 on one axis).
+      double big = 0;
+      for (double x : u.location) big = std::max(big, std::abs(x));
+      EXPECT_NEAR(big, std::sqrt(3.0), 1e-2);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace delcert::certify::test
