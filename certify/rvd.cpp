@@ -74,7 +74,7 @@ struct Work {
 
 class CellAnalysis {
  public:
-  CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const PointGrid& grid, int p,
+  CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const detail::PointGrid& grid, int p,
                const RestrictedCellOptions& options)
       : points_(points), grid_(grid), p_(p), opt_(options),
         chart_(exact::ChartEnclosure::at(system, points.point(p))),
@@ -313,13 +313,13 @@ class CellAnalysis {
     const std::vector<int> simplex = simplex_of(w.S);
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
-      std::vector<Polynomial> eqs = chart_.chart_system().equations();
+      std::vector<exact::Polynomial> eqs = chart_.chart_system().equations();
       const int vars = m_ + k_;
       for (int i : w.S) {
         const Candidate& C = cands_[i];
-        Polynomial s = Polynomial::constant(C.c, vars);
-        for (int a = 0; a < m_; ++a) s = s - Polynomial::variable(a, vars).scaled(mpq_class(2 * C.a[a]));
-        for (int l = 0; l < k_; ++l) s = s - Polynomial::variable(m_ + l, vars).scaled(mpq_class(2 * C.b[l]));
+        exact::Polynomial s = exact::Polynomial::constant(C.c, vars);
+        for (int a = 0; a < m_; ++a) s = s - exact::Polynomial::variable(a, vars).scaled(mpq_class(2 * C.a[a]));
+        for (int l = 0; l < k_; ++l) s = s - exact::Polynomial::variable(m_ + l, vars).scaled(mpq_class(2 * C.b[l]));
         eqs.push_back(std::move(s));
       }
       it = systems_.emplace(simplex, exact::SquareSystem(std::move(eqs))).first;
@@ -400,7 +400,7 @@ class CellAnalysis {
   }
 
   const io::PointSet& points_;
-  const PointGrid& grid_;
+  const detail::PointGrid& grid_;
   int p_;
   RestrictedCellOptions opt_;
   bool refining_ = false;     // second pass (covering refinement)
@@ -411,7 +411,7 @@ class CellAnalysis {
   std::vector<Interval> T_enc_, N_enc_;
   double rho_u_ = 0, gN_ = 0;
   IA r2_;                                        // r^2, enclosed
-  std::vector<Polynomial> G_;                    // the chart equations G(u, h)
+  std::vector<exact::Polynomial> G_;                    // the chart equations G(u, h)
   std::vector<std::vector<Interval>> G_coef_;    // their coefficients, enclosed
   std::vector<Candidate> cands_;
   std::map<std::vector<int>, exact::SquareSystem> systems_;
@@ -421,7 +421,7 @@ class CellAnalysis {
 }  // namespace
 
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
-                                             const PointGrid& grid, int p, const RestrictedCellOptions& options) {
+                                             const detail::PointGrid& grid, int p, const RestrictedCellOptions& options) {
   return CellAnalysis(system, points, grid, p, options).run();
 }
 

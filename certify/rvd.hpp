@@ -62,7 +62,7 @@
 #include <string>
 #include <vector>
 
-#include "certify/grid.hpp"
+#include "certify/detail/grid.hpp"
 #include "exact/interval.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/points.hpp"
@@ -110,6 +110,6 @@ struct RestrictedCellReport {
 // Throws std::invalid_argument on a non-positive graph_radius, std::domain_error when J_F(p) is
 // rank deficient or Gershgorin cannot bound T^T T or Nn^T Nn away from 0.
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
-                                             const PointGrid& grid, int p, const RestrictedCellOptions& options);
+                                             const detail::PointGrid& grid, int p, const RestrictedCellOptions& options);
 
 }  // namespace delcert::certify

@@ -27,7 +27,7 @@ struct CellRuns {
 
 CellRuns analyse_all(const std::string& equation, const io::PointSet& P, double r, int max_depth = 24) {
   const exact::ImplicitSystem F = exact::ImplicitSystem::parse({equation}, 3);
-  const PointGrid grid(P, 2);
+  const detail::PointGrid grid(P, 2);
   RestrictedCellOptions opt;
   const auto start = std::chrono::steady_clock::now();  // printed only, never asserted
   opt.graph_radius = r;
