@@ -1,4 +1,4 @@
-// The certified restricted Voronoi diagram (RVD), one cell at a time (docs/design.md §2b, issue 11).
+// The certified restricted Voronoi diagram (RVD), one cell at a time (docs/design.md §3.8, issue 11).
 // First increment: a library component, not yet part of the certificate.
 //
 // M = { F = 0 } (exact::ImplicitSystem, m = N - k), P the sample, p one of its points. The chart at
@@ -48,7 +48,8 @@
 // B(p, r) is in `vertices` or inside an undecided box. If covering_bound < r, M ∩ Vor(p) has no
 // point in the shell covering_bound <= |x - p| < r: the cell of p is the closed set found here,
 // PROVIDED M ∩ Vor(p) does not also have a component beyond r (excluded globally by the
-// open-and-closed argument of §2b over all points: the caller's job). If covering_bound >= r the
+// open-and-closed argument of docs/design.md §3.8 over all points: the caller's job). If
+// covering_bound >= r the
 // report says "cell reaches the chart boundary" (complete = false).
 // Each vertex found is certified WITHOUT the graph assumption: a point of M (the unique root of
 // {G = 0, equidistance} in its enclosure, Krawczyk) equidistant from the m + 1 points of its

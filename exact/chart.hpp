@@ -1,4 +1,4 @@
-// Certified chart enclosures of an implicit manifold (docs/design.md §2b, §4.1).
+// Certified chart enclosures of an implicit manifold (docs/design.md §3.8, §4.1).
 //
 // M = { x in R^N : F(x) = 0 }, F = (F_1..F_k) polynomials with exact rational coefficients,
 // k = N - m. A chart at a base point p (N doubles, taken as exact rationals) uses two exact
@@ -19,7 +19,7 @@
 //   point x(u) of M with parameter u and normal coordinate in H; it lies in X.
 // Whether a point of M with parameter u and normal coordinate OUTSIDE H exists (another sheet
 // of M over the same u, e.g. the far side of a sphere) is not decided here: that is the graph
-// property of the chart, which the caller establishes (reach, or an ambient search; §2b).
+// property of the chart, which the caller establishes (reach, or an ambient search; docs/design.md §3.8).
 // T and Nn need not be exactly tangent / normal: the statement above holds for any T and Nn;
 // tangency only makes the Krawczyk test succeed more often.
 //
