@@ -49,8 +49,7 @@
 // point in the shell covering_bound <= |x - p| < r: the cell of p is the closed set found here,
 // PROVIDED M ∩ Vor(p) does not also have a component beyond r (excluded globally by the
 // open-and-closed argument of docs/design.md §3.8 over all points: the caller's job). If
-// covering_bound >= r the
-// report says "cell reaches the chart boundary" (complete = false).
+// covering_bound >= r the report says "cell reaches the chart boundary" (complete = false).
 // Each vertex found is certified WITHOUT the graph assumption: a point of M (the unique root of
 // {G = 0, equidistance} in its enclosure, Krawczyk) equidistant from the m + 1 points of its
 // simplex, and every other point of P is checked directly (grid ball around the enclosure, signs
