@@ -3,6 +3,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -88,10 +89,17 @@ class CellAnalysis {
     const double gT = exact::enclose(smallest_eigenvalue_bound(T, N_, m_)).lo;
     const double gN = gN_ = exact::enclose(smallest_eigenvalue_bound(Nn, N_, k_)).lo;
     if (!(gT > 0 && gN > 0)) throw std::domain_error("restricted cell: the chart's Gram matrix is too ill-conditioned");
+    double r = options.graph_radius;
+    if (options.reach > 0) {
+      const double limit = reach_limit(system, Nn, options.reach);
+      report_.graph_property_proven = limit > 0;
+      if (limit > 0) r = std::min(r, limit);
+    }
+    report_.graph_radius = r_ = r;
     {
       exact::UpwardRounding up;  // rho = r / sqrt(g) rounded up: |u_a| <= |u| <= |T u| / sqrt(g_T) < rho_u
-      rho_u_ = (IA(options.graph_radius) / exact::sqrt(IA(gT))).sup();
-      r2_ = IA(options.graph_radius) * IA(options.graph_radius);
+      rho_u_ = (IA(r) / exact::sqrt(IA(gT))).sup();
+      r2_ = IA(r) * IA(r);
     }
     G_ = chart_.chart_system().equations();
     for (const auto& g : G_) {
@@ -100,7 +108,7 @@ class CellAnalysis {
     }
     // Candidates: every point of the closed ball B(p, 2r) (see the header); 2r is exact.
     const std::span<const double> pp = points.point(p);
-    for (int q : grid.ball(pp, 2 * options.graph_radius)) {
+    for (int q : grid.ball(pp, 2 * r)) {
       if (q == p) continue;
       Candidate C;
       C.index = q;
@@ -157,6 +165,79 @@ class CellAnalysis {
   }
 
  private:
+  // A certified lower bound of r_lim = (tau (1 - s) - delta) / 2 (THE REACH LIMIT in rvd.hpp), or
+  // 0 when it cannot be bounded (no chart at u = 0, Nn's columns not proportional to J's rows,
+  // J' J'^T not bounded away from 0, or the bound is not positive).
+  double reach_limit(const exact::ImplicitSystem& system, const std::vector<mpq_class>& Nn, double tau) const {
+    const Box U0(m_, Interval{0, 0});
+    const exact::ChartResult c0 = chart_.enclose(U0);
+    Box X0;
+    if (c0.status != exact::ChartStatus::unique || !chart_.image(U0, c0.H, X0)) return 0;
+    const std::span<const double> pp = points_.point(p_);
+    const std::vector<mpq_class> J = system.jacobian_exact(pp);  // k x N
+    // Nn(:, l) = d_l J(l, :)^T exactly (ChartEnclosure::at scales J's rows by powers of two).
+    std::vector<mpq_class> d(k_);
+    for (int l = 0; l < k_; ++l) {
+      for (int v = 0; v < N_ && d[l] == 0; ++v)
+        if (J[l * N_ + v] != 0) d[l] = Nn[v * k_ + l] / J[l * N_ + v];
+      for (int v = 0; v < N_; ++v)
+        if (Nn[v * k_ + l] != d[l] * J[l * N_ + v]) return 0;
+    }
+    std::vector<IA> x;
+    for (const auto& i : X0) x.push_back(ia(i));
+    exact::UpwardRounding up;
+    std::vector<IA> Js(k_ * N_), Jq(k_ * N_);  // scaled J(p) (exact, enclosed) and J(p') (over X0)
+    for (int l = 0; l < k_; ++l) {
+      const IA dl = ia(exact::enclose(d[l]));
+      for (int v = 0; v < N_; ++v) {
+        const exact::Polynomial D = system.equations()[l].derivative(v);
+        std::vector<Interval> coef;
+        for (const auto& t : D.terms()) coef.push_back(exact::enclose(t.coefficient));
+        Jq[l * N_ + v] = dl * D.evaluate_with<IA>(x, [&](std::size_t t) { return ia(coef[t]); });
+        Js[l * N_ + v] = ia(N_enc_[v * k_ + l]);
+      }
+    }
+    IA diff(0), gram(0);
+    for (int i = 0; i < k_ * N_; ++i) diff += exact::square(Jq[i] - Js[i]);
+    for (int a = 0; a < k_; ++a)
+      for (int b = 0; b < k_; ++b) {
+        IA e(0);
+        for (int v = 0; v < N_; ++v) e += Jq[a * N_ + v] * Jq[b * N_ + v] - Js[a * N_ + v] * Js[b * N_ + v];
+        gram += exact::square(e);
+      }
+    const IA lambda = IA(gN_) - exact::sqrt(gram);  // sigma_min(J')^2 >= g_N - ||J'J'^T - JJ^T||_F (Weyl)
+    if (!(lambda.inf() > 0)) return 0;
+    const IA sin_theta = exact::sqrt(diff) / exact::sqrt(IA(lambda.inf()));
+    const IA delta = exact::sqrt(dist2(U0, c0.H));
+    const IA limit = (IA(tau) * (IA(1) - IA(sin_theta.sup())) - IA(delta.sup())) / IA(2);
+    return limit.inf() > 0 && std::isfinite(limit.inf()) ? limit.inf() : 0;
+  }
+
+  // Is every face C of K = {p} + S with p in C and 2 <= |C| <= m a face of a vertex simplex found
+  // so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure `face` is the
+  // first such C.
+  bool faces_known(const std::vector<int>& S, std::vector<int>& face) const {
+    const int n = static_cast<int>(S.size());
+    for (int mask = 1; mask < (1 << n); ++mask) {
+      if (__builtin_popcount(mask) + 1 > m_) continue;
+      std::vector<int> C{p_};
+      for (int i = 0; i < n; ++i)
+        if (mask >> i & 1) C.push_back(cands_[S[i]].index);
+      std::sort(C.begin(), C.end());
+      bool found = false;
+      for (const auto& v : report_.vertices)
+        if (std::includes(v.simplex.begin(), v.simplex.end(), C.begin(), C.end())) {
+          found = true;
+          break;
+        }
+      if (!found) {
+        face = std::move(C);
+        return false;
+      }
+    }
+    return true;
+  }
+
   // Interval hull of s_q over U x H.
   IA sign_form(const Candidate& C, const Box& U, const Box& H) const {
     IA s = ia(C.c_enc[0]);
@@ -272,15 +353,26 @@ class CellAnalysis {
     const double bound = exact::sqrt(d2).sup();
     const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_ || w.depth >= opt_.max_depth ||
                       (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
-    if (resolved && !fine && !refining_) {
+    // First pass: every resolved box with another candidate waits for the second pass, where the
+    // vertices of the cell are known and PURITY can be checked.
+    if (resolved && !refining_ && (!fine || n >= 2)) {
       pending_.push_back(std::move(w));
       return;
     }
-    if (resolved && fine) {
+    std::vector<int> face;
+    const bool faces_ok = n == 1 || faces_known(w.S, face);
+    const bool purity_floor = widest <= opt_.purity_width * rho_u_;
+    if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {
         report_.covering_bound = bound;
         report_.covering_location = box_centre(w.U, H);
       }
+      if (!faces_ok && std::none_of(report_.unresolved_faces.begin(), report_.unresolved_faces.end(),
+                                    [&](const UndecidedBox& b) { return b.candidates == face; }))
+        report_.unresolved_faces.push_back({box_centre(w.U, H), std::move(face),
+                                            "a face of the candidate set that is in no restricted Voronoi vertex's "
+                                            "simplex, still possible in a box of the finest purity width"});
+      ++report_.kept;
       return;
     }
     if (w.depth >= opt_.max_depth) {
@@ -392,9 +484,12 @@ class CellAnalysis {
       if (!dup) out.push_back(std::move(v));
     }
     V = std::move(out);
+    if (V.empty() && report_.kept > 0)
+      report_.unresolved_faces.push_back({report_.covering_location, {p_},
+                                          "the cell of p may hold points of M but has no restricted Voronoi vertex"});
     if (!report_.undecided.empty())
       report_.reason = std::to_string(report_.undecided.size()) + " undecided boxes";
-    else if (!(report_.covering_bound < opt_.graph_radius))
+    else if (!(report_.covering_bound < r_))
       report_.reason = "cell reaches the chart boundary";
     report_.complete = report_.reason.empty();
   }
@@ -409,7 +504,7 @@ class CellAnalysis {
   exact::ChartEnclosure chart_;
   int N_, m_, k_;
   std::vector<Interval> T_enc_, N_enc_;
-  double rho_u_ = 0, gN_ = 0;
+  double r_ = 0, rho_u_ = 0, gN_ = 0;
   IA r2_;                                        // r^2, enclosed
   std::vector<exact::Polynomial> G_;                    // the chart equations G(u, h)
   std::vector<std::vector<Interval>> G_coef_;    // their coefficients, enclosed

@@ -56,6 +56,23 @@
 // in interval arithmetic) to be strictly farther: the simplex is in Del_RM(P). A root that fails
 // that check is not reported (its box is split on, and ends UNDECIDED at the depth limit).
 //
+// THE REACH LIMIT (options.reach = tau > 0). p is a double, near but in general not on M. The
+// chart at u = 0 encloses the point p' = p + Nn h0 of M (Krawczyk: unique in its slab), so
+// delta := |p - p'| is bounded. With J = J_F(p) and J' = J_F(p') (rows scaled like Nn's columns,
+// which changes neither kernel nor row space), every unit t in ker J has |J' t| = |(J' - J) t|
+// <= ||J' - J||_F and its component normal to T_{p'} M is J'^T (J' J'^T)^-1 J' t, of norm at most
+// |J' t| / sigma_min(J'); by Weyl, sigma_min(J')^2 >= g_N - ||J' J'^T - J J^T||_F. So the largest
+// principal angle theta between ker J and T_{p'} M has sin(theta) <= s, s computed in intervals
+// over the enclosure of p'. Now let x != y in M ∩ B(p, r) with y - x in span(Nn) (normal to ker J).
+// Then angle(y - x, T_{p'}) >= pi/2 - theta; but angle(y - x, T_x) <= arcsin(|y - x| / (2 tau))
+// <= arcsin(r / tau) (Federer 1959, Thm 4.18: d(y - x, T_x) <= |y - x|^2 / (2 tau)) and
+// angle(T_x, T_{p'}) <= 2 arcsin(|x - p'| / (2 tau)) <= 2 arcsin((r + delta) / (2 tau))
+// (Boissonnat, Lieutier, Wintraecken 2019, the tangent-variation bound cited above), so
+// pi/2 <= theta + arcsin(r/tau) + 2 arcsin((r + delta)/(2 tau)). With arcsin z <= (pi/2) z on
+// [0, 1] (convexity) and theta <= (pi/2) sin(theta), this is impossible when
+// (2 r + delta) / tau + s < 1, i.e. for r < r_lim := (tau (1 - s) - delta) / 2 (computed as a
+// certified lower bound; for p on M, s = delta = 0 and r_lim = tau / 2).
+//
 // Deterministic: one point, sequential depth-first subdivision; no dependence on thread count.
 #pragma once
 
@@ -71,12 +88,19 @@ namespace delcert::certify {
 
 struct RestrictedCellOptions {
   double graph_radius = 0;      // r > 0 (see THE GRAPH ASSUMPTION)
+  // A certified lower bound of the reach tau of M (0: none declared). When given, the graph
+  // assumption is PROVEN (see THE REACH LIMIT): the radius used is min(graph_radius, the limit),
+  // reported as RestrictedCellReport::graph_radius.
+  double reach = 0;
   int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
   long max_boxes = 200000;      // boxes visited per point; beyond it the rest is undecided
   // Kept boxes with more candidates than p are split further (second pass) while their widest
   // u-side exceeds this fraction of rho_u and their bound exceeds the distance from p to the
   // farthest vertex found (sharpens covering_bound near the cell's corners; work only).
   double covering_width = 1.0 / 128;
+  // Kept boxes whose candidate set has a face in no vertex simplex found (PURITY) are split while
+  // their widest u-side exceeds this fraction of rho_u; narrower, the face is listed as unresolved.
+  double purity_width = 1.0 / 1024;
   // Where the chart fails, the normal slab H_ball(U) is searched by halving up to this many times.
   int normal_levels = 6;
 };
@@ -100,10 +124,22 @@ struct RestrictedCellReport {
   double covering_bound = 0;
   std::vector<double> covering_location;
   std::vector<UndecidedBox> undecided;
+  // The radius r the statements hold for (options.graph_radius, capped by the reach limit when a
+  // reach is given) and whether the graph property in B(p, r) was proven from the reach (else it
+  // is the caller's assumption).
+  double graph_radius = 0;
+  bool graph_property_proven = false;
+  // PURITY. Every kept box's candidate set K (p included) bounds the nearest-point sets of the
+  // points of M in it. A face C of K containing p, with |C| <= m, that is not a face of a vertex
+  // simplex found here may be a restricted Voronoi face of dimension > 0 without a vertex (then
+  // Del_RM is not pure): such boxes are refined in the second pass, and the ones still in doubt at
+  // the finest purity width are listed here, once per face (`candidates` = the face C). Empty: every simplex of Del_RM
+  // containing p is a face of an m-simplex in `vertices` (when complete).
+  std::vector<UndecidedBox> unresolved_faces;
   bool complete = false;  // no undecided box, covering_bound < graph_radius
   std::string reason;     // why not complete ("" when complete)
   // Counters.
-  long boxes = 0, discarded = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
+  long boxes = 0, kept = 0, discarded = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
   int max_depth = 0;
 };
 
