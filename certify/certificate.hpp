@@ -22,10 +22,11 @@ namespace delcert::certify {
 enum class Verdict { certified, refuted, undecided, report };
 const char* to_string(Verdict v);
 
-// The ten checks, by their number in the certificate (certify/certify.hpp lists what each decides).
+// The checks, by their number in the certificate (certify/certify.hpp lists what each decides).
 enum class CheckId {
   input_sanity = 1, sparsity = 2, stars = 3, consistency = 4, thickness = 5,
   power_protection = 6, secure_simplices = 7, topology = 8, theorem = 9, star_radius = 10,
+  covering = 11, restricted_delaunay = 12, tangential_equals_restricted = 13,
 };
 // The number and the name written in the certificate ("id", "name").
 constexpr int check_number(CheckId id) { return static_cast<int>(id); }

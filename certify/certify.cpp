@@ -10,6 +10,7 @@
 
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
+#include "certify/restricted.hpp"
 #include "certify/sanity.hpp"
 #include "certify/detail/sha256.hpp"
 #include "certify/star.hpp"
@@ -100,6 +101,7 @@ struct Inputs {
   io::PointSet points;
   std::vector<long> point_lines;     // line of each point in the points file
   std::optional<io::Complex> given;  // the complex to verify; none in audit mode
+  bool given_is_off = false;         // it came from an OFF file (a surface mesher's output)
   io::Claims claims;
 };
 
@@ -132,6 +134,7 @@ Inputs read_inputs(const CertifyOptions& o) {
           throw io::InputError(o.complex, cf.embedded_point_lines[i],
                                "vertex " + std::to_string(i) + " differs from point " + std::to_string(i) + " of " +
                                    o.points + "; pass the same points to --points");
+    in.given_is_off = cf.embedded_points.has_value();
     in.given = std::move(cf.complex);
   }
   if (!o.claims.empty()) {
@@ -173,11 +176,12 @@ json conventions_json() {
 json parameters_json(const Inputs& in) {
   json params = json::object();
   const io::Claims& claims = in.claims;
-  if (claims.eps) params["eps"] = exact::rational_to_string(*claims.eps);
+  if (claims.star_radius) params["star_radius"] = exact::rational_to_string(*claims.star_radius);
+  if (claims.covering) params["covering"] = exact::rational_to_string(*claims.covering);
   if (claims.sparsity) params["sparsity"] = exact::rational_to_string(*claims.sparsity);
   if (claims.gamma0) params["gamma0"] = exact::rational_to_string(*claims.gamma0);
   if (claims.power_protection) params["power_protection"] = exact::rational_to_string(*claims.power_protection);
-  return {{"mode", in.given ? "verify the given complex" : "audit: compute Del_TM(P)"}, {"claims", params}};
+  return {{"mode", in.given ? "verify the given complex" : "audit: compute Del_TM(P) and Del_RM(P)"}, {"claims", params}};
 }
 
 // ---- Stars (read by checks 3, 4, 6, 7 and 10) ------------------------------------------------
@@ -387,7 +391,7 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
   return R;
 }
 
-// Check 10: every star simplex has R_p(s) < eps (the eps claim); without a claim, a report.
+// Check 10: every star simplex has R_p(s) < eps (the star_radius claim); without a claim, a report.
 struct RadiusResult {
   CheckEntry entry{CheckId::star_radius};
   long cells = 0;                                 // star cells seen (certified or not)
@@ -428,13 +432,15 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   }
   radius.details = {{"star_cells", R.cells}, {"not_below_eps", too_big}};
   if (eps) {
-    radius.claim = {{"eps", exact::rational_to_string(*eps)}, {"meaning", "R_p(s) < eps for every star simplex"}};
+    radius.claim = {{"star_radius", exact::rational_to_string(*eps)},
+                    {"meaning", "R_p(s) < star_radius for every star simplex"}};
   } else if (radius.verdict == Verdict::certified) {
     radius.verdict = Verdict::report;
   }
   radius.summary = "max R_p(s)^2 <= " + num(max_r2.hi) +
-                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= eps = " + exact::rational_to_string(*eps)
-                        : " (no eps claim)");
+                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= star_radius = " +
+                              exact::rational_to_string(*eps)
+                        : " (no star_radius claim)");
   return R;
 }
 
@@ -518,6 +524,218 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   return secure;
 }
 
+// ---- Del_RM (checks 11, 12, 13; certify/restricted.hpp) --------------------------------------
+
+json box_json(const exact::Box& X) {
+  json b = json::array();
+  for (const auto& i : X) b.push_back(enclosure_json(i));
+  return b;
+}
+
+json vertex_witness(const RestrictedSimplex& s) {
+  return {{"kind", "restricted_voronoi_vertex"},
+          {"simplex", s.simplex},
+          {"found_at", s.found_at},
+          {"vertex_enclosure", box_json(s.vertex.x)},
+          {"detail", "Krawczyk proves exactly one point of M in this box equidistant from the simplex's points, and "
+                     "every other sample point is certainly farther from every point of the box: the simplex is in "
+                     "Del_RM(P)"}};
+}
+
+json location_json(const std::vector<double>& x) {
+  json j = json::array();
+  for (double v : x) j.push_back(num(v));
+  return j;
+}
+
+// What checks 11-13 say when Del_RM was not computed (--skip-restricted).
+CheckEntry not_computed(CheckId id) {
+  CheckEntry e(id);
+  e.verdict = Verdict::report;
+  e.summary = "not computed (--skip-restricted): this certificate says nothing about Del_RM(P) or the covering radius";
+  return e;
+}
+
+// Check 11: the certified covering radius (P is an eps-sample of M), against the covering claim.
+CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_class>& claim,
+                          const io::ManifoldSpec& spec) {
+  CheckEntry cov(CheckId::covering);
+  const bool one_component = !spec.expected.betti_z2.empty() && spec.expected.betti_z2[0] == 1;
+  const bool anchored = !R.simplices.empty();
+  if (!R.covering_certified) cov.undecide(R.reason);
+  else if (!anchored) cov.undecide("no restricted Voronoi vertex was found: no component of M is known to be sampled");
+  // A certified lower bound of max_x d(x, P): the farthest restricted Voronoi vertex found.
+  const double lower = R.vertex_distance_lower;
+  if (claim) {
+    cov.claim = {{"covering", exact::rational_to_string(*claim)},
+                 {"meaning", "P is an eps-sample of M: d(x, P) < covering for every x in M"}};
+    const exact::Interval e = exact::enclose(*claim);
+    if (lower >= e.hi) {  // a point of M (a certified vertex) at distance >= the claim from P
+      cov.refute("a point of M is at distance >= the claimed covering radius from P");
+      for (const auto& s : R.simplices)
+        if (s.distance_lower >= e.hi) {
+          json w = vertex_witness(s);
+          w["distance_to_P"] = {{"certified_lower_bound", num(s.distance_lower)}};
+          w["detail"] = "a point of M (a certified restricted Voronoi vertex) whose nearest sample points, the "
+                        "simplex's, are at distance >= the claim";
+          cov.add_witness(w, 5);
+        }
+    } else if (!(R.covering < e.lo) && cov.verdict == Verdict::certified) {
+      cov.undecide("the certified covering bound is not below the claim");
+    }
+    if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, *claim);
+  }
+  if (R.covering_point >= 0)
+    cov.margin = {{"covering_radius", {{"certified_upper_bound", num(R.covering)}, {"certified_lower_bound", num(lower)}}},
+                  {"attained_near", location_json(R.cells[R.covering_point].covering_location)},
+                  {"in_the_cell_of", R.covering_point}};
+  cov.details = {{"assumptions",
+                  {{"charts", "none: no reach and no graph property is assumed; the other sheets of M in each ball are "
+                              "excluded box by box (docs/design.md §3.8)"},
+                   {"components", one_component ? "the spec's expected b0 = 1: M is connected and holds a restricted "
+                                                  "Voronoi vertex"
+                                                : "every connected component of M holds a restricted Voronoi vertex "
+                                                  "(not checked: the spec gives no b0 = 1)"}}},
+                 {"min_analysed_radius", num(R.min_radius)},
+                 {"rounds", R.rounds_used},
+                 {"incomplete_cells", R.incomplete_points.size()},
+                 {"boxes", R.boxes},
+                 {"krawczyk_calls", R.krawczyk_calls},
+                 {"krawczyk_failures", R.krawczyk_failures}};
+  if (!one_component && cov.verdict == Verdict::certified)
+    cov.details["note"] = "certified under the stated component assumption";
+  json undecided = json::array();
+  for (int p : R.incomplete_points) {
+    if (undecided.size() >= 10) break;
+    const auto& c = R.cells[p];
+    json u = {{"point", p}, {"reason", c.reason}};
+    if (!c.undecided.empty())
+      u["location"] = location_json(c.undecided[0].location), u["candidates"] = c.undecided[0].candidates,
+      u["why"] = c.undecided[0].reason;
+    undecided.push_back(u);
+  }
+  cov.details["undecided_examples"] = undecided;
+  cov.summary = (R.covering_certified ? "P is an eps-sample of M with eps <= " + num(R.covering)
+                                      : "covering radius not certified (" + R.reason + ")") +
+                "; a restricted Voronoi vertex is at distance >= " + num(lower) + " from P" +
+                (claim ? "; claim " + exact::rational_to_string(*claim) : "");
+  return cov;
+}
+
+// Check 12: Del_RM(P) computed (every m-simplex with a certified restricted Voronoi vertex; all
+// of them when the covering argument holds; pure when no face is in doubt) and, with --kind
+// restricted, compared with the given complex.
+CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io::Complex>& given, bool claimed, int m) {
+  CheckEntry rd(CheckId::restricted_delaunay);
+  if (!R.covering_certified) rd.undecide("Del_RM(P) not known completely: " + R.reason);
+  long unresolved = 0;
+  json impure = json::array();
+  for (const auto& c : R.cells)
+    for (const auto& f : c.unresolved_faces) {
+      ++unresolved;
+      if (impure.size() < 10) impure.push_back({{"face", f.candidates}, {"at_point", c.point},
+                                               {"location", location_json(f.location)}, {"why", f.reason}});
+    }
+  if (unresolved)
+    rd.undecide("Del_RM(P) may not be pure: a restricted Voronoi face of dimension > 0 may hold no vertex (see "
+                "details.possibly_impure)");
+  for (const auto& f : R.cross_check_failures)
+    rd.add_witness({{"kind", "cross_check_failure"}, {"simplex", f.simplex}, {"found_at", f.found_at},
+                    {"missed_at", f.missed_at}});
+  long missing = 0, extra = 0;
+  if (claimed && given) {
+    std::set<Simplex> tops;
+    for (const auto& s0 : given->simplices) {
+      Simplex s = s0;
+      std::sort(s.begin(), s.end());
+      if (static_cast<int>(s.size()) == m + 1) tops.insert(s);
+    }
+    std::set<Simplex> found;
+    for (const auto& s : R.simplices) {
+      found.insert(s.simplex);
+      if (tops.count(s.simplex)) continue;
+      ++missing;  // certified without any assumption: refuted whatever else is undecided
+      rd.refute("a simplex of Del_RM(P) is missing from the complex");
+      rd.add_witness(vertex_witness(s));
+    }
+    for (const auto& s : tops) {
+      if (found.count(s)) continue;
+      ++extra;
+      if (!R.covering_certified) continue;  // not proven absent
+      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      rd.add_witness({{"kind", "not_restricted"}, {"simplex", s},
+                      {"detail", "the restricted Voronoi cells of all points were computed completely (check 11) and "
+                                 "no point of M is equidistant from these m + 1 points and closer to them than to every "
+                                 "other point"}});
+    }
+    rd.claim = {{"kind", "restricted"}, {"meaning", "the complex is the restricted Delaunay complex Del_RM(P)"}};
+  }
+  rd.details = {{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
+                {"possibly_impure_faces", unresolved}, {"possibly_impure", impure}};
+  if (claimed && given) rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
+  rd.summary = std::to_string(R.simplices.size()) + " m-simplices of Del_RM(P) certified" +
+               (R.covering_certified ? " (all of them)" : " (maybe not all)") +
+               (unresolved ? "; purity not proven" : "") +
+               (claimed && given ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
+                                       " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
+                                 : "");
+  return rd;
+}
+
+// Check 13: Del_TM(P) = Del_RM(P) on m-simplices, decided either way with witnesses.
+CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R, bool claimed) {
+  CheckEntry eq(CheckId::tangential_equals_restricted);
+  std::set<Simplex> tm;
+  long unknown_stars = 0;
+  for (const auto& r : st.reports) {
+    if (r.claimed_verified) {
+      tm.insert(st.claimed[r.p].begin(), st.claimed[r.p].end());
+    } else if (r.state == StarReport::State::proven) {
+      for (const auto& c : r.star) tm.insert(c.simplex);
+    } else {
+      ++unknown_stars;
+    }
+  }
+  std::set<Simplex> rm;
+  long only_rm = 0, only_tm = 0;
+  for (const auto& s : R.simplices) {
+    rm.insert(s.simplex);
+    if (tm.count(s.simplex)) continue;
+    if (unknown_stars) continue;
+    ++only_rm;
+    eq.refute("a simplex of Del_RM(P) is not in Del_TM(P)");
+    json w = vertex_witness(s);
+    w["not_in"] = "Del_TM(P)";
+    eq.add_witness(w);
+  }
+  for (const auto& s : tm) {
+    if (rm.count(s) || !R.covering_certified) continue;
+    ++only_tm;
+    eq.refute("a simplex of Del_TM(P) is not in Del_RM(P)");
+    eq.add_witness({{"kind", "not_restricted"}, {"simplex", s}, {"in", "Del_TM(P)"},
+                    {"detail", "it is in a tangential star, but the complete restricted Voronoi diagram (check 11) has "
+                               "no vertex dual to it"}});
+  }
+  if (eq.verdict == Verdict::certified) {
+    if (unknown_stars) eq.undecide(std::to_string(unknown_stars) + " star(s) not determined exactly");
+    else if (!R.covering_certified) eq.undecide("Del_RM(P) not known completely: " + R.reason);
+  }
+  eq.details = {{"tangential_m_simplices", tm.size()}, {"restricted_m_simplices", rm.size()},
+                {"only_in_restricted", only_rm}, {"only_in_tangential", only_tm}, {"stars_undetermined", unknown_stars}};
+  const std::string decided = eq.verdict == Verdict::certified ? "Del_TM(P) = Del_RM(P)"
+                              : eq.verdict == Verdict::refuted ? "Del_TM(P) != Del_RM(P)"
+                                                               : "Del_TM(P) = Del_RM(P) not decided";
+  eq.summary = decided + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
+               std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) + " only restricted)";
+  if (!claimed) {
+    // Not a claim of this input (--kind restricted): the decision is reported, not held against it.
+    eq.details["decision"] = to_string(eq.verdict);
+    eq.verdict = Verdict::report;
+    eq.summary += " [not claimed]";
+  }
+  return eq;
+}
+
 }  // namespace
 
 Certificate run_certify(const CertifyOptions& o) {
@@ -551,27 +769,37 @@ Certificate run_certify(const CertifyOptions& o) {
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
 
-  const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.eps};
-  const Stars stars = analyse_stars(in.given, S, threads, ctx);
+  // The kind of the given complex: tangential (checks 3 and 4 compare it with Del_TM) or
+  // restricted (check 12 compares it with Del_RM; the stars are computed as in audit mode).
+  const bool restricted_kind =
+      in.given && (o.kind == ComplexKind::restricted || (o.kind == ComplexKind::automatic && in.given_is_off));
+  if (restricted_kind && o.skip_restricted)
+    throw io::InputError(o.complex, 0, "the complex is claimed to be restricted Delaunay (--kind restricted, the "
+                                       "default for OFF), which needs checks 11-13: drop --skip-restricted or pass "
+                                       "--kind tangential");
+  C.parameters["kind"] = !in.given ? "audit" : restricted_kind ? "restricted" : "tangential";
+  const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.star_radius};
+  const Stars stars = analyse_stars(restricted_kind ? std::nullopt : in.given, S, threads, ctx);
   watch.record(C, "stars");
   CheckEntry stars_entry = check_stars(stars, m);
   CheckEntry consistency = check_consistency(stars, S, ctx_consistency);
   ProtectionResult protection = check_power_protection(stars, claims.power_protection);
-  RadiusResult radius = check_star_radius(stars, claims.eps);
+  RadiusResult radius = check_star_radius(stars, claims.star_radius);
   watch.record(C, "assemble_checks_3_4_6_10");
 
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by
   // check 3 (wrong dimension, with the simplex as witness); their 2^n faces are never enumerated
   // (a 32-vertex simplex would hang).
+  const io::Complex& K = restricted_kind ? *in.given : stars.complex;  // what checks 5 and 8 look at
   std::vector<Simplex> lattice_simplices;
-  for (const auto& s : stars.complex.simplices)
+  for (const auto& s : K.simplices)
     if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
   const FaceLattice lattice = face_lattice(lattice_simplices);
   ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
                                          o.force_exact);
   watch.record(C, "thickness");
 
-  CheckEntry topology = check_topology(stars.complex, m, lattice, spec.expected);
+  CheckEntry topology = check_topology(K, m, lattice, spec.expected);
   watch.record(C, "topology");
 
   // Checks 7 and 9: the paper's hypotheses, measured.
@@ -580,11 +808,27 @@ Certificate run_certify(const CertifyOptions& o) {
   meas.min_thickness = thick.min_top.lo;
   meas.min_margin = protection.cells ? protection.min_margin.lo : -INFINITY;
   meas.max_radius_squared = radius.cells ? radius.max_r2.hi : INFINITY;
-  meas.eps = claims.eps && radius.entry.verdict == Verdict::certified ? std::optional<mpq_class>(*claims.eps) : std::nullopt;
+  meas.eps = claims.star_radius && radius.entry.verdict == Verdict::certified ? std::optional<mpq_class>(*claims.star_radius)
+                                                                             : std::nullopt;
   const TheoremParams tp = theorem_parameters(meas);
   CheckEntry secure = check_secure_simplices(tp, S, stars.reports, threads, ctx);
   CheckEntry theorem = theorem_report(tp, spec);
   watch.record(C, "secure_and_theorem");
+
+  // Checks 11-13: the certified restricted Voronoi diagram.
+  std::optional<CheckEntry> covering, restricted, equal;
+  if (o.skip_restricted) {
+    covering = not_computed(CheckId::covering), restricted = not_computed(CheckId::restricted_delaunay);
+    equal = not_computed(CheckId::tangential_equals_restricted);
+  } else {
+    RestrictedDelaunayOptions ro;
+    ro.threads = threads;
+    const RestrictedDelaunay R = compute_restricted_delaunay(system, P, grid, ro);
+    covering = check_covering(R, claims.covering, spec);
+    restricted = check_restricted(R, in.given, restricted_kind, m);
+    equal = check_tangential_equals_restricted(stars, R, !restricted_kind);
+  }
+  watch.record(C, "restricted_delaunay");
 
   for (auto& c : ctx) C.filter.merge(c.stats);
   C.filter.merge(ctx_sparsity.stats);
@@ -598,6 +842,9 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(std::move(topology));
   C.checks.push_back(std::move(theorem));
   C.checks.push_back(std::move(radius.entry));
+  C.checks.push_back(std::move(*covering));
+  C.checks.push_back(std::move(*restricted));
+  C.checks.push_back(std::move(*equal));
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error

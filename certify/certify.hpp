@@ -1,4 +1,4 @@
-// delcert-certify's driver: reads each input once, runs checks 1-10 (one function each; their
+// delcert-certify's driver: reads each input once, runs checks 1-13 (one function each; their
 // numbers and names are CheckId in certificate.hpp) and assembles the certificate.
 //
 //   1 input_sanity       points near M (exact residuals, certified distance), right component, full-rank Jacobian
@@ -10,7 +10,11 @@
 //   7 secure_simplices   paper Definition 3.1 in each vertex's local Euclidean metric (report)
 //   8 topology           pure closed pseudomanifold, sphere links, Euler, Betti over Z/2, Z/3
 //   9 theorem            Theorem 3.3's hypotheses from the measured values (report)
-//  10 star_radius        every star simplex has R_p(s) < eps (the eps claim)
+//  10 star_radius        every star simplex has R_p(s) < eps (the star_radius claim)
+//  11 covering           certified covering radius: P is an eps-sample of M (the covering claim)
+//  12 restricted_delaunay Del_RM(P) from the certified restricted Voronoi diagram; with --kind
+//                        restricted, the complex is exactly Del_RM(P)
+//  13 tangential_equals_restricted  Del_TM(P) = Del_RM(P), either way with witnesses
 #pragma once
 
 #include <string>
@@ -20,11 +24,19 @@
 
 namespace delcert::certify {
 
+// What the given complex is claimed to be. automatic: restricted for an OFF file (a surface
+// mesher's output), tangential otherwise.
+enum class ComplexKind { automatic, tangential, restricted };
+
 struct CertifyOptions {
   std::string manifold;  // spec path or builtin:NAME
   std::string points;
   std::string complex;   // empty: audit the point set (compute Del_TM)
   std::string claims;    // empty: no claims
+  ComplexKind kind = ComplexKind::automatic;
+  // Checks 11-13 are not computed (their entries say so, verdict REPORT): the certificate is then
+  // about Del_TM(P) only. Not allowed with kind restricted.
+  bool skip_restricted = false;
   int threads = 1;
   // Every exact/ predicate skips its interval filter and decides exactly (and check 7 decides
   // every cell in exact rationals). For differential tests: the certificate must be the same

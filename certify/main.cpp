@@ -1,7 +1,8 @@
 // delcert-certify: the independent checker (docs/design.md §1, §5, §9).
 //
-//   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--claims CLAIMS.json]
-//                   [--out CERTIFICATE.json] [--threads T] [--no-times]
+//   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted]
+//                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
+//                   [--skip-restricted]
 //
 // Prints one line per check and, last, "verdict: CERTIFIED|REFUTED|UNDECIDED".
 // Exit status: 0 CERTIFIED, 1 REFUTED, 3 UNDECIDED, 2 bad input or usage (no certificate written).
@@ -31,7 +32,15 @@ int main(int argc, char** argv) {
   app.add_option("--complex", o.complex,
                  "complex to verify (delcert-complex v1, OFF); without it the tangential complex of the points is "
                  "computed and audited");
-  app.add_option("--claims", o.claims, "claims.json (format delcert-claims v1: eps, sparsity, gamma0, power_protection)");
+  std::string kind;
+  app.add_option("--kind", kind,
+                 "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files) or "
+                 "restricted (Del_RM, the default for OFF: a surface mesher's output)")
+      ->check(CLI::IsMember({"tangential", "restricted"}));
+  app.add_option("--claims", o.claims,
+                 "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
+  app.add_flag("--skip-restricted", o.skip_restricted,
+               "do not compute the restricted Voronoi diagram (checks 11-13): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
   app.add_option("--threads", o.threads, "worker threads (0: all cores); the certificate does not depend on it")
       ->check(CLI::Range(0, 256))
@@ -43,6 +52,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
+    return 2;
+  }
+  if (!kind.empty()) o.kind = kind == "restricted" ? certify::ComplexKind::restricted : certify::ComplexKind::tangential;
+  if (!kind.empty() && o.complex.empty()) {
+    std::cerr << "delcert-certify: --kind needs --complex (it says what the given complex is claimed to be)\n";
     return 2;
   }
   if (const std::string why = exact::directed_rounding_failure(); !why.empty()) {
@@ -58,7 +72,7 @@ int main(int argc, char** argv) {
     certify::Certificate cert = certify::run_certify(o);
     if (!out.empty()) io::write_file_atomically(out, cert.to_text(!no_times));
     for (const auto& c : cert.checks)
-      std::printf("check %-2d %-22s %-10s %s\n", c.number(), c.name(), certify::to_string(c.verdict), c.summary.c_str());
+      std::printf("check %-2d %-28s %-10s %s\n", c.number(), c.name(), certify::to_string(c.verdict), c.summary.c_str());
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
     certify::Verdict v = cert.overall();
     std::printf("verdict: %s\n", certify::to_string(v));

@@ -68,6 +68,7 @@ struct Candidate {
 
 struct Work {
   Box U;
+  Box H;                     // the parent's slab H_eff (empty at the root: no constraint)
   std::vector<double> hint;  // centre of the parent's slab (empty at the root)
   std::vector<int> S;       // positions in `cands` of the candidates other than p
   int depth = 0;
@@ -89,12 +90,7 @@ class CellAnalysis {
     const double gT = exact::enclose(smallest_eigenvalue_bound(T, N_, m_)).lo;
     const double gN = gN_ = exact::enclose(smallest_eigenvalue_bound(Nn, N_, k_)).lo;
     if (!(gT > 0 && gN > 0)) throw std::domain_error("restricted cell: the chart's Gram matrix is too ill-conditioned");
-    double r = options.graph_radius;
-    if (options.reach > 0) {
-      const double limit = reach_limit(system, Nn, options.reach);
-      report_.graph_property_proven = limit > 0;
-      if (limit > 0) r = std::min(r, limit);
-    }
+    const double r = options.graph_radius;
     report_.graph_radius = r_ = r;
     {
       exact::UpwardRounding up;  // rho = r / sqrt(g) rounded up: |u_a| <= |u| <= |T u| / sqrt(g_T) < rho_u
@@ -165,54 +161,6 @@ class CellAnalysis {
   }
 
  private:
-  // A certified lower bound of r_lim = (tau (1 - s) - delta) / 2 (THE REACH LIMIT in rvd.hpp), or
-  // 0 when it cannot be bounded (no chart at u = 0, Nn's columns not proportional to J's rows,
-  // J' J'^T not bounded away from 0, or the bound is not positive).
-  double reach_limit(const exact::ImplicitSystem& system, const std::vector<mpq_class>& Nn, double tau) const {
-    const Box U0(m_, Interval{0, 0});
-    const exact::ChartResult c0 = chart_.enclose(U0);
-    Box X0;
-    if (c0.status != exact::ChartStatus::unique || !chart_.image(U0, c0.H, X0)) return 0;
-    const std::span<const double> pp = points_.point(p_);
-    const std::vector<mpq_class> J = system.jacobian_exact(pp);  // k x N
-    // Nn(:, l) = d_l J(l, :)^T exactly (ChartEnclosure::at scales J's rows by powers of two).
-    std::vector<mpq_class> d(k_);
-    for (int l = 0; l < k_; ++l) {
-      for (int v = 0; v < N_ && d[l] == 0; ++v)
-        if (J[l * N_ + v] != 0) d[l] = Nn[v * k_ + l] / J[l * N_ + v];
-      for (int v = 0; v < N_; ++v)
-        if (Nn[v * k_ + l] != d[l] * J[l * N_ + v]) return 0;
-    }
-    std::vector<IA> x;
-    for (const auto& i : X0) x.push_back(ia(i));
-    exact::UpwardRounding up;
-    std::vector<IA> Js(k_ * N_), Jq(k_ * N_);  // scaled J(p) (exact, enclosed) and J(p') (over X0)
-    for (int l = 0; l < k_; ++l) {
-      const IA dl = ia(exact::enclose(d[l]));
-      for (int v = 0; v < N_; ++v) {
-        const exact::Polynomial D = system.equations()[l].derivative(v);
-        std::vector<Interval> coef;
-        for (const auto& t : D.terms()) coef.push_back(exact::enclose(t.coefficient));
-        Jq[l * N_ + v] = dl * D.evaluate_with<IA>(x, [&](std::size_t t) { return ia(coef[t]); });
-        Js[l * N_ + v] = ia(N_enc_[v * k_ + l]);
-      }
-    }
-    IA diff(0), gram(0);
-    for (int i = 0; i < k_ * N_; ++i) diff += exact::square(Jq[i] - Js[i]);
-    for (int a = 0; a < k_; ++a)
-      for (int b = 0; b < k_; ++b) {
-        IA e(0);
-        for (int v = 0; v < N_; ++v) e += Jq[a * N_ + v] * Jq[b * N_ + v] - Js[a * N_ + v] * Js[b * N_ + v];
-        gram += exact::square(e);
-      }
-    const IA lambda = IA(gN_) - exact::sqrt(gram);  // sigma_min(J')^2 >= g_N - ||J'J'^T - JJ^T||_F (Weyl)
-    if (!(lambda.inf() > 0)) return 0;
-    const IA sin_theta = exact::sqrt(diff) / exact::sqrt(IA(lambda.inf()));
-    const IA delta = exact::sqrt(dist2(U0, c0.H));
-    const IA limit = (IA(tau) * (IA(1) - IA(sin_theta.sup())) - IA(delta.sup())) / IA(2);
-    return limit.inf() > 0 && std::isfinite(limit.inf()) ? limit.inf() : 0;
-  }
-
   // Is every face C of K = {p} + S with p in C and 2 <= |C| <= m a face of a vertex simplex found
   // so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure `face` is the
   // first such C.
@@ -276,6 +224,34 @@ class CellAnalysis {
     report_.undecided.push_back({std::move(location), simplex_of(w.S), std::move(reason)});
   }
 
+  // a := a ∩ b; false when empty.
+  static bool intersect(Box& a, const Box& b) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      a[i] = Interval{std::max(a[i].lo, b[i].lo), std::min(a[i].hi, b[i].hi)};
+      if (a[i].lo > a[i].hi) return false;
+    }
+    return true;
+  }
+  // Is U x (A \ B) excluded (no point of M ∩ B(p, r) ∩ Vor(p)), B ⊆ A? A \ B is covered by at
+  // most 2k boxes: along each normal axis l in turn, the parts of A below and above B (with the
+  // axes before l already cut to B).
+  bool difference_excluded(const Box& U, Box A, const Box& B, const std::vector<int>& S) const {
+    for (int l = 0; l < k_; ++l) {
+      if (A[l].lo < B[l].lo) {
+        Box piece = A;
+        piece[l] = Interval{A[l].lo, B[l].lo};
+        if (!excluded(U, piece, S, opt_.normal_levels)) return false;
+      }
+      if (B[l].hi < A[l].hi) {
+        Box piece = A;
+        piece[l] = Interval{B[l].hi, A[l].hi};
+        if (!excluded(U, piece, S, opt_.normal_levels)) return false;
+      }
+      A[l] = B[l];
+    }
+    return true;
+  }
+
   // True when no point of M ∩ B(p, r) over U with normal coordinate in H is in the Voronoi cell of
   // p: either the box is outside the ball, or some G_i has no zero on it (no point of M), or some
   // candidate is certainly closer on all of it; else H is halved along its widest side, up to
@@ -305,28 +281,46 @@ class CellAnalysis {
   void visit(Work w, std::vector<Work>& stack) {
     ++report_.boxes;
     report_.max_depth = std::max(report_.max_depth, w.depth);
-    // The slab: the chart's, when unique and inside B(p, r); else H_ball(U) = [-b, b]^k with
-    // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
-    const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
+    const Work original = w;  // what the second pass revisits (the parent's S and slab)
     exact::UpwardRounding up;
-    Box H;
-    const bool chart_slab = ch.status == exact::ChartStatus::unique && dist2(w.U, ch.H).sup() < r2_.inf();
+    // The region: U x Hpar, Hpar = the parent's slab cut to H_ball(U) = [-b, b]^k with
+    // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
+    const IA room = r2_ - dist2(w.U, Box(k_, Interval{0, 0}));
+    if (room.sup() <= 0) {  // |T u| >= r over U: outside the ball
+      ++report_.discarded;
+      return;
+    }
+    const double b = exact::sqrt(IA(0, room.sup()) / IA(gN_)).sup();
+    Box H(k_, Interval{-b, b});
+    if (!w.H.empty() && !intersect(H, w.H)) {  // the parent's slab has nothing over U in the ball
+      ++report_.discarded;
+      return;
+    }
+    // The chart's slab replaces it when the rest of the region is excluded (THE SLAB INVARIANT).
+    const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
+    // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
+    // Hc's faces: the difference is taken with Hc widened by twice its width on each side (plus
+    // 2^-30 b), where G keeps a sign that interval arithmetic can see. Sound for any widening.
+    Box Hc = ch.H;
+    for (auto& i : Hc) {
+      const double d = (IA(2) * (IA(i.hi) - IA(i.lo)) + IA(b) * IA(0x1p-30)).sup();
+      i = Interval{(IA(i.lo) - IA(d)).inf(), (IA(i.hi) + IA(d)).sup()};
+    }
+    const bool chart_slab = ch.status == exact::ChartStatus::unique && intersect(Hc, H) &&
+                            difference_excluded(w.U, H, Hc, w.S);
     if (chart_slab) {
-      H = ch.H;
+      // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
+      // lies in its contraction, which is then the slab (tight covering bounds and signs).
+      const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
+      H = tight.status == exact::ChartStatus::unique ? tight.H : std::move(Hc);
     } else {
       ++report_.chart_failures;
-      const IA room = r2_ - dist2(w.U, Box(k_, Interval{0, 0}));
-      if (room.sup() <= 0) {  // |T u| >= r over U: outside the ball
-        ++report_.discarded;
-        return;
-      }
-      const double b = exact::sqrt(IA(0, room.sup()) / IA(gN_)).sup();
-      H.assign(k_, Interval{-b, b});
       if (excluded(w.U, H, w.S, opt_.normal_levels)) {
         ++report_.discarded;
         return;
       }
     }
+    w.H = H;
     IA d2;
     {
       if (dist2(w.U, H).inf() >= r2_.sup()) {
@@ -356,7 +350,7 @@ class CellAnalysis {
     // First pass: every resolved box with another candidate waits for the second pass, where the
     // vertices of the cell are known and PURITY can be checked.
     if (resolved && !refining_ && (!fine || n >= 2)) {
-      pending_.push_back(std::move(w));
+      pending_.push_back(original);
       return;
     }
     std::vector<int> face;
@@ -393,6 +387,7 @@ class CellAnalysis {
         c.U[a] = (corner >> a) & 1 ? Interval{mid, w.U[a].hi} : Interval{w.U[a].lo, mid};
       }
       c.S = w.S;
+      c.H = w.H;
       c.depth = w.depth + 1;
       if (chart_slab) c.hint = hint;
       children.push_back(std::move(c));

@@ -1,5 +1,5 @@
 // The certified restricted Voronoi diagram (RVD), one cell at a time (docs/design.md §3.8, issue 11).
-// First increment: a library component, not yet part of the certificate.
+// certify/restricted.hpp assembles the cells into Del_RM(P) and the covering radius.
 //
 // M = { F = 0 } (exact::ImplicitSystem, m = N - k), P the sample, p one of its points. The chart at
 // p (exact::ChartEnclosure::at) writes x = p + T u + Nn h with T an exact basis of ker J_F(p) and
@@ -13,65 +13,42 @@
 // derived from r, not a separate option), and over a box U its normal coordinates satisfy
 // |h_l|^2 <= |Nn h|^2 / g_N < (r^2 - inf_U |T u|^2) / g_N: the slab H_ball(U).
 //
-// THE GRAPH ASSUMPTION (the caller's, not checked here): M ∩ B(p, r) meets every line
-// p + T u + span(Nn) in at most one point (it is a graph over T_p). Lemma: this holds when
-// r < tau / 2, tau the reach of M. Proof sketch: if x != y in M ∩ B(p, r) have the same u, then
-// y - x is normal to T_p; by Federer (Curvature measures, 1959, Thm 4.18) y - x makes an angle at
-// most arcsin(|y - x| / (2 tau)) <= arcsin(r / tau) with T_x, and by Boissonnat, Lieutier,
-// Wintraecken (The reach, metric distortion, geodesic convexity and the variation of tangent
-// spaces, JACT 2019, Thm 3) the angle between T_x and T_p is at most 2 arcsin(|x - p| / (2 tau))
-// < 2 arcsin(r / (2 tau)); so pi/2 <= arcsin(r/tau) + 2 arcsin(r/(2 tau)), false for r <= tau/2
-// (the right side is 58.96 degrees at r = tau/2). For the unit sphere the exact bound is r < sqrt 2.
-// The chart's own Krawczyk uniqueness covers only its slab H: the assumption is what excludes other
-// sheets of M over the same u inside the ball.
+// NO GRAPH ASSUMPTION. The chart's Krawczyk uniqueness covers only its slab H: another sheet of M
+// over the same u (the far side of a sphere, the other side of a thin neck) may lie in the ball
+// outside H. It is not assumed away (no reach, no graph property over T_p): the subdivision
+// excludes it, box by box, as follows.
 //
-// WHAT IS CERTIFIED. Each box U of the subdivision of U0 gets a normal slab H_eff: the chart's
-// enclosure H when exact::ChartEnclosure proves a unique point over every u in U in H AND that piece
-// lies inside B(p, r) (then, by the graph assumption, it is THE point of M ∩ B(p, r) over u); else
-// H_ball(U) (which holds every point of M ∩ B(p, r) over U, no assumption needed). Where the chart
-// fails (e.g. beyond the fold of a sphere seen from p), H_ball(U) is first searched by halving
-// (options.normal_levels): U is discarded when every piece is outside the ball, free of M (some
-// chart equation G_i excludes 0 on it) or certainly closer to some candidate q than to p.
-// Every other decision concerns U x H_eff:
-//   * discarded: |x - p| >= r on all of it, or some q is certainly closer than p on all of it
-//     (|q|^2 - |p|^2 - 2 x.(q - p) < 0, affine in (u, h), interval arithmetic under upward rounding);
-//   * q dropped from the candidate set S(U) when it is certainly farther than p (same sign > 0);
-//     children inherit S(U);
-//   * S(p) initially: the points in the closed ball B(p, 2r): if x in B(p, r) has
-//     d(x, q) <= d(x, p), then |q - p| <= d(q, x) + d(x, p) <= 2 d(x, p) < 2r;
+// THE SLAB INVARIANT. Each box U of the subdivision of U0 carries a normal slab H_eff(U) and a
+// candidate set S(U) such that every point x of M ∩ B(p, r) ∩ Vor(p) with parameter u in U has its
+// normal coordinate in H_eff(U), and every point of P outside S(U) + {p} is strictly farther than
+// p from every point of U x H_eff(U). At the root, H_eff = H_ball(U0) and S = the points of the
+// closed ball B(p, 2r) (if x in B(p, r) has d(x, q) <= d(x, p) then |q - p| <= 2 d(x, p) < 2r).
+// For a child box U, let Hpar = H_eff(parent) ∩ H_ball(U) (still holds every such x: U lies in
+// the parent's box). When exact::ChartEnclosure proves a unique point of M over every u in U in a
+// slab Hc, H_eff(U) = Hc ∩ Hpar PROVIDED U x (Hpar \ Hc) is excluded (2k boxes, each tested with
+// the parent's candidates, valid there); else H_eff(U) = Hpar. Excluded means: outside the ball,
+// free of M (some chart equation G_i excludes 0) or certainly closer to some candidate q than to
+// p, tested on the box and, failing that, on halves along the widest normal side
+// (options.normal_levels times). Then q is dropped from S when certainly farther than p on
+// U x H_eff (sign of the affine form |q|^2 - |p|^2 - 2 x.(q - p), interval arithmetic under
+// upward rounding); U is discarded when U x H_eff is excluded (outside the ball, or a candidate
+// certainly closer; with a slab that is not the chart's, also after the normal halving).
 //   * a box with |S(U)| <= m holds no restricted Voronoi vertex (a vertex needs m + 1 nearest
-//     points, all of which are in S(U)); with |S(U)| = m + 1 and H_eff the chart's, Krawczyk on the
-//     N x N system {G(u, h) = 0, d(x, q_i)^2 = d(x, p)^2 (i = 1..m)} in U x H proves one vertex
-//     (unique_root) or none (no_root); otherwise the box is split (all sides halved).
-// Hence, under the graph assumption: the kept boxes (not discarded) cover M ∩ Vor(p) ∩ B(p, r);
-// covering_bound >= max |x - p| over M ∩ Vor(p) ∩ B(p, r); every restricted Voronoi vertex of p in
-// B(p, r) is in `vertices` or inside an undecided box. If covering_bound < r, M ∩ Vor(p) has no
-// point in the shell covering_bound <= |x - p| < r: the cell of p is the closed set found here,
-// PROVIDED M ∩ Vor(p) does not also have a component beyond r (excluded globally by the
-// open-and-closed argument of docs/design.md §3.8 over all points: the caller's job). If
-// covering_bound >= r the report says "cell reaches the chart boundary" (complete = false).
-// Each vertex found is certified WITHOUT the graph assumption: a point of M (the unique root of
-// {G = 0, equidistance} in its enclosure, Krawczyk) equidistant from the m + 1 points of its
+//     points, all of which are in S(U) + {p}); with |S(U)| = m + 1 and the chart's slab, Krawczyk
+//     on the N x N system {G(u, h) = 0, d(x, q_i)^2 = d(x, p)^2 (i = 1..m)} in U x H_eff proves
+//     one vertex (unique_root) or none (no_root); otherwise the box is split (all sides halved).
+// Hence: the kept boxes (not discarded) cover M ∩ Vor(p) ∩ B(p, r); covering_bound >= max |x - p|
+// over M ∩ Vor(p) ∩ B(p, r); every restricted Voronoi vertex of p in B(p, r) is in `vertices` or
+// inside an undecided box. If covering_bound < r, M ∩ Vor(p) has no point in the shell
+// covering_bound <= |x - p| < r: the cell of p is the closed set found here, PROVIDED M ∩ Vor(p)
+// does not also have a component beyond r (excluded globally by the open-and-closed argument of
+// certify/restricted.hpp over all points: the caller's job). If covering_bound >= r the report
+// says "cell reaches the chart boundary" (complete = false).
+// Each vertex found is certified independently of the subdivision: a point of M (the unique root
+// of {G = 0, equidistance} in its enclosure, Krawczyk) equidistant from the m + 1 points of its
 // simplex, and every other point of P is checked directly (grid ball around the enclosure, signs
 // in interval arithmetic) to be strictly farther: the simplex is in Del_RM(P). A root that fails
 // that check is not reported (its box is split on, and ends UNDECIDED at the depth limit).
-//
-// THE REACH LIMIT (options.reach = tau > 0). p is a double, near but in general not on M. The
-// chart at u = 0 encloses the point p' = p + Nn h0 of M (Krawczyk: unique in its slab), so
-// delta := |p - p'| is bounded. With J = J_F(p) and J' = J_F(p') (rows scaled like Nn's columns,
-// which changes neither kernel nor row space), every unit t in ker J has |J' t| = |(J' - J) t|
-// <= ||J' - J||_F and its component normal to T_{p'} M is J'^T (J' J'^T)^-1 J' t, of norm at most
-// |J' t| / sigma_min(J'); by Weyl, sigma_min(J')^2 >= g_N - ||J' J'^T - J J^T||_F. So the largest
-// principal angle theta between ker J and T_{p'} M has sin(theta) <= s, s computed in intervals
-// over the enclosure of p'. Now let x != y in M ∩ B(p, r) with y - x in span(Nn) (normal to ker J).
-// Then angle(y - x, T_{p'}) >= pi/2 - theta; but angle(y - x, T_x) <= arcsin(|y - x| / (2 tau))
-// <= arcsin(r / tau) (Federer 1959, Thm 4.18: d(y - x, T_x) <= |y - x|^2 / (2 tau)) and
-// angle(T_x, T_{p'}) <= 2 arcsin(|x - p'| / (2 tau)) <= 2 arcsin((r + delta) / (2 tau))
-// (Boissonnat, Lieutier, Wintraecken 2019, the tangent-variation bound cited above), so
-// pi/2 <= theta + arcsin(r/tau) + 2 arcsin((r + delta)/(2 tau)). With arcsin z <= (pi/2) z on
-// [0, 1] (convexity) and theta <= (pi/2) sin(theta), this is impossible when
-// (2 r + delta) / tau + s < 1, i.e. for r < r_lim := (tau (1 - s) - delta) / 2 (computed as a
-// certified lower bound; for p on M, s = delta = 0 and r_lim = tau / 2).
 //
 // Deterministic: one point, sequential depth-first subdivision; no dependence on thread count.
 #pragma once
@@ -87,11 +64,7 @@
 namespace delcert::certify {
 
 struct RestrictedCellOptions {
-  double graph_radius = 0;      // r > 0 (see THE GRAPH ASSUMPTION)
-  // A certified lower bound of the reach tau of M (0: none declared). When given, the graph
-  // assumption is PROVEN (see THE REACH LIMIT): the radius used is min(graph_radius, the limit),
-  // reported as RestrictedCellReport::graph_radius.
-  double reach = 0;
+  double graph_radius = 0;      // r > 0: the cell is analysed in the open ball B(p, r)
   int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
   long max_boxes = 200000;      // boxes visited per point; beyond it the rest is undecided
   // Kept boxes with more candidates than p are split further (second pass) while their widest
@@ -124,11 +97,7 @@ struct RestrictedCellReport {
   double covering_bound = 0;
   std::vector<double> covering_location;
   std::vector<UndecidedBox> undecided;
-  // The radius r the statements hold for (options.graph_radius, capped by the reach limit when a
-  // reach is given) and whether the graph property in B(p, r) was proven from the reach (else it
-  // is the caller's assumption).
-  double graph_radius = 0;
-  bool graph_property_proven = false;
+  double graph_radius = 0;  // the radius r the statements hold for (options.graph_radius)
   // PURITY. Every kept box's candidate set K (p included) bounds the nearest-point sets of the
   // points of M in it. A face C of K containing p, with |C| <= m, that is not a face of a vertex
   // simplex found here may be a restricted Voronoi face of dimension > 0 without a vertex (then

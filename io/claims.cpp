@@ -17,22 +17,30 @@ Claims parse_claims(const std::string& text, const std::string& file) {
   // as written, and every message names the line.
   const detail::StrictJson doc = detail::StrictJson::parse(text, file);
   const json& j = doc.root();
-  if (!j.is_object()) throw InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v1\", ...}");
-  if (!j.contains("format") || j.at("format") != "delcert-claims v1")
+  if (!j.is_object()) throw InputError(file, 1, "expected a JSON object {\"format\": \"delcert-claims v2\", ...}");
+  const bool v1 = j.contains("format") && j.at("format") == "delcert-claims v1";
+  if (!v1 && !(j.contains("format") && j.at("format") == "delcert-claims v2"))
     throw InputError(file, doc.line("format"),
-                         "expected \"format\": \"delcert-claims v1\"; this reader knows version 1 only");
+                     "expected \"format\": \"delcert-claims v2\" (or v1); this reader knows versions 1 and 2");
   Claims c;
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     if (key == "format") continue;
     const long line = doc.key_line(key);
-    std::optional<mpq_class>* slot = key == "eps"                ? &c.eps
-                                     : key == "sparsity"         ? &c.sparsity
-                                     : key == "gamma0"           ? &c.gamma0
-                                     : key == "power_protection" ? &c.power_protection
-                                                                 : nullptr;
+    if (!v1 && key == "eps")
+      throw InputError(file, line,
+                       "'eps' is not a version 2 claim: write \"star_radius\" (every star simplex has R_p(s) < value) "
+                       "or \"covering\" (d(x, P) < value for every x in M), or declare \"delcert-claims v1\"");
+    std::optional<mpq_class>* slot = (v1 ? key == "eps" : key == "star_radius") ? &c.star_radius
+                                     : !v1 && key == "covering"                 ? &c.covering
+                                     : key == "sparsity"                        ? &c.sparsity
+                                     : key == "gamma0"                          ? &c.gamma0
+                                     : key == "power_protection"                ? &c.power_protection
+                                                                                : nullptr;
     if (!slot)
-      throw InputError(file, line, "unknown claim '" + key + "'; known: eps, sparsity, gamma0, power_protection");
+      throw InputError(file, line, "unknown claim '" + key + "'; known: " +
+                                       (v1 ? "eps, sparsity, gamma0, power_protection (version 1)"
+                                           : "star_radius, covering, sparsity, gamma0, power_protection"));
     const json& v = it.value();
     if (v.is_null()) continue;
     mpq_class q;
@@ -49,8 +57,9 @@ Claims parse_claims(const std::string& text, const std::string& file) {
                            "claim '" + key + "' must be an exact rational written as a string, e.g. \"0.05\" or \"1/20\", "
                            "or a JSON integer; found " + (doc.number_text(key) ? *doc.number_text(key) : v.dump()));
     }
-    if (q < 0 || (key == "eps" && q == 0))
-      throw InputError(file, line, "claim '" + key + "' must be " + (key == "eps" ? "positive" : "non-negative"));
+    const bool positive = slot == &c.star_radius || slot == &c.covering;
+    if (q < 0 || (positive && q == 0))
+      throw InputError(file, line, "claim '" + key + "' must be " + (positive ? "positive" : "non-negative"));
     if (key == "gamma0" && !(q > 0 && q <= 1)) throw InputError(file, line, "claim 'gamma0' must lie in (0, 1]");
     *slot = q;
   }
@@ -61,9 +70,9 @@ Claims read_claims(const std::string& path) { return parse_claims(read_file(path
 
 std::string format_claims(const Claims& c) {
   nlohmann::ordered_json j;
-  j["format"] = "delcert-claims v1";
+  j["format"] = "delcert-claims v2";
   const std::pair<const char*, const std::optional<mpq_class>*> keys[] = {
-      {"eps", &c.eps}, {"sparsity", &c.sparsity}, {"gamma0", &c.gamma0}, {"power_protection", &c.power_protection}};
+      {"star_radius", &c.star_radius}, {"covering", &c.covering}, {"sparsity", &c.sparsity}, {"gamma0", &c.gamma0}, {"power_protection", &c.power_protection}};
   for (const auto& [key, value] : keys)
     if (*value) j[key] = exact::rational_to_string(**value);
   return j.dump(2) + "\n";

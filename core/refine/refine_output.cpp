@@ -66,9 +66,9 @@ ClaimsOutcome make_claims(const RefineResult& r) {
   io::Claims claims;
   const mpq_class& eps = k.eps.value().value;
   if (f.all_small)
-    claims.eps = eps;
+    claims.star_radius = eps;
   else
-    out.omitted.emplace_back("eps", "some star simplex has R_p >= eps, or a star is not closed");
+    out.omitted.emplace_back("star_radius", "some star simplex has R_p >= eps, or a star is not closed");
   const mpq_class mu0eps = mu0_times(eps);
   if (f.min_distance > mu0eps.get_d() * (1 + 1e-9)) {
     claims.sparsity = mu0eps;

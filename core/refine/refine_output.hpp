@@ -1,7 +1,7 @@
 // What `delcert refine` writes (docs/design.md §9): DIR/points.txt, DIR/complex.txt, DIR/report.json
 // and DIR/claims.json, each atomically.
 //
-// claims.json ("delcert-claims v1", io/claims.hpp) holds only what the output keeps,
+// claims.json ("delcert-claims v2", io/claims.hpp) holds only what the output keeps,
 // by the producer's own measure, every value an exact rational string:
 //   eps               every star simplex has R_p(σ) < ε               (when no star cell is big)
 //   sparsity          every two points are farther apart than this:  μ0 ε = ε/9 when that holds,

@@ -133,32 +133,6 @@ TEST(RestrictedCell, RandomSphereSampleGivesTheConvexHull) {
   expect_consistent(cells_run);
 }
 
-// With the reach declared (1 for the unit sphere) the graph property is proven per point and the
-// radius is capped just below tau / 2 (the points are doubles, off the sphere by an ulp or so).
-TEST(RestrictedCell, ReachProvesTheGraphPropertyBelowHalfTheReach) {
-  const io::PointSet P = spread_sphere(3, 60, 0.3, 11);
-  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
-  const detail::PointGrid grid(P, 2);
-  RestrictedCellOptions opt;
-  opt.graph_radius = 0.9;
-  opt.reach = 1;
-  std::set<Simplex> simplices;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, static_cast<int>(p), opt);
-    EXPECT_TRUE(R.graph_property_proven) << p;
-    EXPECT_LE(R.graph_radius, 0.5) << p;
-    EXPECT_GT(R.graph_radius, 0.5 - 1e-9) << p;
-    EXPECT_TRUE(R.complete) << p << ": " << R.reason;
-    for (const auto& v : R.vertices) simplices.insert(v.simplex);
-  }
-  EXPECT_EQ(simplices, hull_facets(P));
-  // Without a reach nothing is proven, and the radius is the one asked for.
-  opt.reach = 0;
-  const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, 0, opt);
-  EXPECT_FALSE(R.graph_property_proven);
-  EXPECT_EQ(R.graph_radius, 0.9);
-}
-
 TEST(RestrictedCell, CoveringBoundSeesAHole) {
   const double theta = 0.7;
   const io::PointSet all = spread_sphere(3, 60, 0.3, 12);

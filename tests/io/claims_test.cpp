@@ -13,13 +13,25 @@ TEST(Claims, ParsesExactRationals) {
   Claims c = parse_claims(R"({"format": "delcert-claims v1", "eps": "0.1", "sparsity": "1/30",
                               "gamma0": 1, "power_protection": "2.5e-3"})",
                           "c.json");
-  ASSERT_TRUE(c.eps && c.sparsity && c.gamma0 && c.power_protection);
-  EXPECT_EQ(*c.eps, mpq_class(1, 10));  // "0.1" is exactly 1/10, not the double
+  ASSERT_TRUE(c.star_radius && c.sparsity && c.gamma0 && c.power_protection);
+  EXPECT_FALSE(c.covering);                     // version 1's eps is the star radius
+  EXPECT_EQ(*c.star_radius, mpq_class(1, 10));  // "0.1" is exactly 1/10, not the double
   EXPECT_EQ(*c.sparsity, mpq_class(1, 30));
   EXPECT_EQ(*c.gamma0, mpq_class(1));
   EXPECT_EQ(*c.power_protection, mpq_class(1, 400));
   Claims none = parse_claims(R"({"format": "delcert-claims v1"})", "c.json");
   EXPECT_FALSE(none.any());
+  Claims v2 = parse_claims(R"({"format": "delcert-claims v2", "star_radius": "0.3", "covering": "1/4"})", "c.json");
+  ASSERT_TRUE(v2.star_radius && v2.covering);
+  EXPECT_EQ(*v2.star_radius, mpq_class(3, 10));
+  EXPECT_EQ(*v2.covering, mpq_class(1, 4));
+}
+
+// Version 2 splits version 1's "eps" into two different promises and refuses the old name.
+TEST(Claims, Version2RefusesTheAmbiguousEps) {
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"eps\": \"0.1\"}", 2, "star_radius");
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"covering\": \"0.1\"}", 2, "unknown claim");
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"covering\": \"0\"}", 2, "positive");
 }
 
 void expect_error(const std::string& text, long line, const std::string& fragment) {
@@ -36,7 +48,7 @@ void expect_error(const std::string& text, long line, const std::string& fragmen
 TEST(Claims, RefusesMalformedInput) {
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": 0.1}", 2, "exact rational");
   expect_error("{\"format\": \"delcert-claims v1\",\n\n \"protection\": \"1\"}", 3, "unknown claim");
-  expect_error("{\"format\": \"delcert-claims v2\"}", 1, "version 1");
+  expect_error("{\"format\": \"delcert-claims v3\"}", 1, "versions 1 and 2");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"sparsity\": \"-1\"}", 2, "non-negative");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"gamma0\": \"1.5\"}", 2, "(0, 1]");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": \"0\"}", 2, "positive");
@@ -74,7 +86,7 @@ TEST(Claims, IntegersAreReadExactly) {
   Claims c = parse_claims(R"({"format": "delcert-claims v1", "sparsity": 18446744073709551615})", "c.json");
   EXPECT_EQ(*c.sparsity, mpq_class("18446744073709551615"));
   c = parse_claims(R"({"format": "delcert-claims v1", "eps": 100000000000000000000000000001})", "c.json");
-  EXPECT_EQ(*c.eps, mpq_class("100000000000000000000000000001"));
+  EXPECT_EQ(*c.star_radius, mpq_class("100000000000000000000000000001"));
   expect_error("{\"format\": \"delcert-claims v1\",\n \"sparsity\": -18446744073709551617}", 2, "non-negative");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": 1e3}", 2, "found 1e3");
 }
@@ -86,11 +98,12 @@ TEST(Claims, WriteThenReadGivesTheSameRationals) {
   const mpq_class values[] = {mpq_class(1, 10), mpq_class(1, 3), mpq_class(1, 12960000), mpq_class(0),
                               mpq_class(1), exact::parse_rational("123456789012345678901234567891/7"),
                               exact::parse_rational("1e-300"), mpq_class(2, 3)};
-  for (int mask = 0; mask < 16; ++mask)
+  for (int mask = 0; mask < 32; ++mask)
     for (const mpq_class& v : values) {
       Claims c;
       mpq_class eps = v == 0 ? mpq_class(1, 7) : mpq_class(abs(v));  // eps must be positive
-      if (mask & 1) c.eps = eps;
+      if (mask & 1) c.star_radius = eps;
+      if (mask & 16) c.covering = eps;
       if (mask & 2) c.sparsity = abs(v);
       if (mask & 4) c.gamma0 = mpq_class(1, 3);  // must lie in (0, 1]
       if (mask & 8) c.power_protection = abs(v) * abs(v);
@@ -104,12 +117,14 @@ TEST(Claims, WriteThenReadGivesTheSameRationals) {
 // The writer's bytes, which claims.json files and their SHA-256 in certificates depend on.
 TEST(Claims, WriterLayout) {
   Claims c;
-  c.eps = mpq_class(1, 4);
+  c.star_radius = mpq_class(1, 4);
+  c.covering = mpq_class(1, 5);
   c.sparsity = mpq_class(1, 36);
   c.power_protection = mpq_class(1, 12960000);
-  EXPECT_EQ(format_claims(c), "{\n  \"format\": \"delcert-claims v1\",\n  \"eps\": \"0.25\",\n  \"sparsity\": \"1/36\",\n"
+  EXPECT_EQ(format_claims(c), "{\n  \"format\": \"delcert-claims v2\",\n  \"star_radius\": \"0.25\",\n  \"covering\": \"0.2\",\n"
+                              "  \"sparsity\": \"1/36\",\n"
                               "  \"power_protection\": \"1/12960000\"\n}\n");
-  EXPECT_EQ(format_claims(Claims{}), "{\n  \"format\": \"delcert-claims v1\"\n}\n");
+  EXPECT_EQ(format_claims(Claims{}), "{\n  \"format\": \"delcert-claims v2\"\n}\n");
 }
 
 }  // namespace

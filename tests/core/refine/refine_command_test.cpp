@@ -71,8 +71,9 @@ TEST(RefineCommand, WritesFourFilesDeterministically) {
   EXPECT_TRUE(report["rules"].contains("inconsistent"));
 
   auto claims = nlohmann::json::parse(slurp(dir.file("a/claims.json")));
-  EXPECT_EQ(claims["format"], "delcert-claims v1");
-  EXPECT_EQ(claims["eps"], "0.25");
+  EXPECT_EQ(claims["format"], "delcert-claims v2");
+  EXPECT_EQ(claims["star_radius"], "0.25");  // R_p(s) < eps; the refiner does not claim covering
+  EXPECT_FALSE(claims.contains("covering"));
   EXPECT_EQ(claims["sparsity"], "1/36");  // eps/9, exact
   EXPECT_EQ(claims["gamma0"], "0.1");
   EXPECT_EQ(claims["power_protection"], "1/12960000");  // 0.01^2 (0.25/9)^2
@@ -105,8 +106,8 @@ TEST(RefineCommand, CapHitExitsFourWithPartialOutputMarked) {
   EXPECT_EQ(report["stop_reason"], "max_inserted");
   EXPECT_EQ(report["points"]["inserted"], 3);
   auto claims = nlohmann::json::parse(slurp(dir.file("o/claims.json")));
-  EXPECT_FALSE(claims.contains("eps"));  // big cells remain: eps is not claimed
-  EXPECT_TRUE(report["claims"]["not_claimed"].contains("eps"));
+  EXPECT_FALSE(claims.contains("star_radius"));  // big cells remain: R_p(s) < eps is not claimed
+  EXPECT_TRUE(report["claims"]["not_claimed"].contains("star_radius"));
   EXPECT_TRUE(std::filesystem::exists(dir.file("o/points.txt")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("o/complex.txt")));
 }

@@ -1,0 +1,108 @@
+#include "certify/restricted.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "certify/detail/parallel.hpp"
+#include "exact/interval_arithmetic.hpp"
+
+namespace delcert::certify {
+
+namespace {
+
+// The distance from p to its nearest other point (floating point: it only picks a radius).
+double nearest_distance(const io::PointSet& P, const detail::PointGrid& grid, int p) {
+  const auto pp = P.point(p);
+  for (double t = grid.spacing(); std::isfinite(t); t *= 2) {
+    double best = INFINITY;
+    for (int q : grid.ball(pp, t)) {
+      if (q == p) continue;
+      double d = 0;
+      for (std::size_t v = 0; v < pp.size(); ++v) d += (P.point(q)[v] - pp[v]) * (P.point(q)[v] - pp[v]);
+      best = std::min(best, std::sqrt(d));
+    }
+    if (best <= t) return best;
+    if (t >= grid.diameter()) return best;
+  }
+  return grid.diameter();
+}
+
+}  // namespace
+
+RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& system, const io::PointSet& P,
+                                               const detail::PointGrid& grid, const RestrictedDelaunayOptions& o) {
+  const int n = static_cast<int>(P.size());
+  RestrictedDelaunay R;
+  R.cells.resize(n);
+  // The first radius: twice the largest nearest-neighbour distance.
+  std::vector<double> nn(n);
+  detail::parallel_for(n, o.threads, [&](std::size_t p, int) { nn[p] = nearest_distance(P, grid, static_cast<int>(p)); });
+  double r = 2 * *std::max_element(nn.begin(), nn.end());
+  const double r_cap = 2 * grid.diameter();  // a ball this large holds all of P: larger never helps
+  std::vector<int> todo(n);
+  for (int p = 0; p < n; ++p) todo[p] = p;
+  for (int round = 0; !todo.empty(); ++round) {
+    RestrictedCellOptions co = o.cell;
+    co.graph_radius = r;
+    detail::parallel_for(todo.size(), o.threads, [&](std::size_t i, int) {
+      R.cells[todo[i]] = analyse_restricted_cell(system, P, grid, todo[i], co);
+    });
+    R.rounds_used = round + 1;
+    double c = 0;
+    for (const auto& cell : R.cells) c = std::max(c, cell.covering_bound);
+    std::vector<int> again;
+    for (int p = 0; p < n; ++p) {
+      const RestrictedCellReport& cell = R.cells[p];
+      const bool reaches = cell.undecided.empty() && !cell.complete;  // reaches its ball's boundary
+      if (reaches || !(c < cell.graph_radius)) again.push_back(p);
+    }
+    if (again.empty() || round >= o.rounds || r >= r_cap) break;
+    r = std::min(r_cap, std::max(2 * r, 1.5 * c));
+    todo = std::move(again);
+  }
+
+  // Assemble: the simplices (first certified vertex of each), the covering bound, the cross-check.
+  std::map<std::vector<int>, RestrictedSimplex> found;
+  R.min_radius = INFINITY;
+  for (int p = 0; p < n; ++p) {
+    const RestrictedCellReport& cell = R.cells[p];
+    R.boxes += cell.boxes, R.krawczyk_calls += cell.krawczyk_calls, R.krawczyk_failures += cell.krawczyk_failures;
+    R.chart_failures += cell.chart_failures;
+    if (!cell.complete) R.incomplete_points.push_back(p);
+    R.min_radius = std::min(R.min_radius, cell.graph_radius);
+    if (cell.covering_bound > R.covering || R.covering_point < 0) R.covering = cell.covering_bound, R.covering_point = p;
+    for (const auto& v : cell.vertices) {
+      if (found.count(v.simplex)) continue;
+      exact::UpwardRounding up;
+      exact::IntervalNumber d(0);  // |x - p|^2 over the enclosure: d(vertex, P) = |vertex - p|
+      for (std::size_t i = 0; i < v.x.size(); ++i)
+        d += exact::square(exact::to_interval_number(v.x[i]) - exact::IntervalNumber(P.point(p)[i]));
+      const double lower = exact::sqrt(d).inf();
+      found.emplace(v.simplex, RestrictedSimplex{v.simplex, p, v, lower});
+      R.vertex_distance_lower = std::max(R.vertex_distance_lower, lower);
+    }
+  }
+  for (auto& [s, rs] : found) {
+    for (int q : s) {
+      if (q == rs.found_at || !R.cells[q].complete) continue;
+      const auto& V = R.cells[q].vertices;
+      if (std::none_of(V.begin(), V.end(), [&](const RestrictedVoronoiVertex& v) { return v.simplex == s; }))
+        R.cross_check_failures.push_back({s, rs.found_at, q});
+    }
+    R.simplices.push_back(std::move(rs));
+  }
+  if (!R.incomplete_points.empty())
+    R.reason = std::to_string(R.incomplete_points.size()) + " cell(s) not complete (first: point " +
+               std::to_string(R.incomplete_points[0]) + ": " + R.cells[R.incomplete_points[0]].reason + ")";
+  else if (!(R.covering < R.min_radius))
+    R.reason = "the covering bound is not below every analysed radius";
+  else if (!R.cross_check_failures.empty())
+    R.reason = std::to_string(R.cross_check_failures.size()) +
+               " restricted Voronoi vertex(es) found at one point of their simplex but not at another whose cell is "
+               "complete: the program contradicts itself";
+  R.covering_certified = R.reason.empty();
+  return R;
+}
+
+}  // namespace delcert::certify

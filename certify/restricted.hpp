@@ -1,0 +1,78 @@
+// The restricted Delaunay complex Del_RM(P) and the certified covering radius, assembled from the
+// restricted Voronoi cells of every point (certify/rvd.hpp; docs/design.md §3.8). Read by checks
+// 11 (covering), 12 (restricted_delaunay) and 13 (tangential_equals_restricted).
+//
+// THE RADIUS. Every cell is analysed in a ball B(p, r_p) (no reach and no graph property is
+// assumed: rvd.hpp). The first radius is twice the largest nearest-neighbour distance (a cell
+// rarely reaches farther); points whose cell reaches its ball's boundary, or
+// whose radius is not above the largest covering bound c found so far, are analysed again with a
+// larger radius (at most `rounds` times).
+//
+// THE COVERING ARGUMENT (open and closed). Let c = max_p covering_bound_p and suppose every cell
+// is complete (no undecided box) and c < r_p for every p. Let
+// f(x) = d(x, P) on M (continuous). For x in M with a nearest point q, either f(x) >= r_q or x is
+// in M ∩ Vor(q) ∩ B(q, r_q), which the kept boxes of q cover, so f(x) <= c_q <= c. Hence f takes
+// no value in (c, min_p r_p), a non-empty interval, and on each connected component of M the
+// image of f is an interval: it lies in [0, c] as soon as the component has one point with
+// f <= c. Every restricted Voronoi vertex found is such a point. So if every component of M holds
+// a restricted Voronoi vertex, P is a c-sample of M: d(x, P) <= c < eps' for every x in M. The
+// certificate states the assumption "every component of M holds one" and checks it against the
+// spec's expected b0 when given (b0 = 1: one vertex suffices); it cannot count components of M.
+// Under the same conditions, every restricted Voronoi vertex of P lies within c of its points,
+// hence inside the analysed balls: the vertices found are ALL of them, and the purity test of
+// rvd.hpp covers every restricted Voronoi face.
+//
+// CROSS-CHECK. A vertex found at p (certified without any assumption) must also be found at each
+// other point of its simplex whose cell is complete (it is within c < r of that point too); a miss
+// would mean the program contradicts itself, and makes the result incomplete.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "certify/detail/grid.hpp"
+#include "certify/rvd.hpp"
+#include "exact/tangent_space.hpp"
+#include "io/points.hpp"
+
+namespace delcert::certify {
+
+struct RestrictedDelaunayOptions {
+  int threads = 1;
+  int rounds = 4;    // radius increases after the first analysis
+  RestrictedCellOptions cell;  // graph_radius is set per round
+};
+
+struct RestrictedSimplex {
+  std::vector<int> simplex;        // sorted, m + 1 points
+  int found_at = -1;               // the point whose cell certified it
+  RestrictedVoronoiVertex vertex;  // its certified vertex (an enclosure of a point of M)
+  double distance_lower = 0;       // certified lower bound of d(vertex, P) = |vertex - found_at|
+};
+
+struct CrossCheckFailure {
+  std::vector<int> simplex;
+  int found_at = -1, missed_at = -1;
+};
+
+struct RestrictedDelaunay {
+  std::vector<RestrictedCellReport> cells;  // per point
+  std::vector<RestrictedSimplex> simplices; // the m-simplices found, sorted by simplex, unique
+  std::vector<CrossCheckFailure> cross_check_failures;
+  std::vector<int> incomplete_points;       // cells not complete (see RestrictedCellReport::reason)
+  double covering = 0;                      // c = max_p covering_bound_p (an upper bound where complete)
+  int covering_point = -1;                  // the p attaining it
+  double min_radius = 0;                    // min_p r_p
+  double vertex_distance_lower = 0;         // max over `simplices` of distance_lower: <= max_{x in M} d(x, P)
+  int rounds_used = 0;
+  // The covering argument holds (see above): every cell complete and proven, c < min_p r_p, no
+  // cross-check failure. Then `simplices` are all the m-simplices of Del_RM(P).
+  bool covering_certified = false;
+  std::string reason;                       // why not, when not
+  long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
+};
+
+RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& system, const io::PointSet& points,
+                                               const detail::PointGrid& grid, const RestrictedDelaunayOptions& options);
+
+}  // namespace delcert::certify
