@@ -17,9 +17,10 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <map>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -214,14 +215,16 @@ void expect_consistent(const Agreement& a, bool allow_undecided = false) {
 //    * for p, a in the simplex and q in P outside it: e_pq(x) = |x - q|^2 - |x - p|^2 =
 //      |q|^2 - |p|^2 - 2 x.(q - p) is affine in x, so its range over the box X is
 //      [c - 2 sum_k max(...), c - 2 sum_k min(...)] with the extremes at corners; the interval
-//      evaluation below (each X_k appears once) encloses exactly that range up to outward rounding,
-//      and where it cannot decide, the minimum over the corners is computed in exact rationals.
+//      evaluation below encloses that range (a filter), and where it cannot decide, the extreme over
+//      the corners is computed in exact rationals.
 //      Required: e_pq > 0 on all of X (q strictly farther than the simplex's points), and e_pa's
 //      range contains 0 (the equidistant point can be in X);
 //    * F's interval enclosure over X contains 0 (a point of M can be in X), and X is small.
 //    Intervals: CGAL::Interval_nt<false> under CGAL::Protect_FPU_rounding<true> (upward rounding);
-//    a double coordinate is an exact interval, and every operation's result encloses the exact
-//    result of its operands (overflow gives +-inf or -+DBL_MAX, still enclosures).
+//    a double coordinate is an exact interval, and CGAL computes both bounds of every operation
+//    rounded outward (the lower one by negation under upward rounding), so each result encloses
+//    the exact result of its operands; an overflow would give an infinite bound, never a wrong
+//    finite one (the values here are below 100 in magnitude; underflow only widens).
 struct ExactPoints {
   std::vector<std::array<mpq_class, 3>> q;
   explicit ExactPoints(const io::PointSet& P) : q(P.size()) {
