@@ -411,8 +411,10 @@ TEST(RestrictedCellVersusReference, NearlyCocircularCubeIsSoundAtAnyDepth) {
       for (int k = 0; k < 3; ++k) pts.back().push_back(((i >> k) & 1 ? 1.0 : -1.0) + e * (rng.uniform() - 0.5));
     }
     const io::PointSet P = make_points(3, pts);
-    SCOPED_TRACE("perturbation " + std::to_string(e));
-    const Agreement shallow = compute("perturbed cube, e = " + std::to_string(e), F, P, 2.2, 24);
+    char label[64];
+    std::snprintf(label, sizeof label, "perturbed cube, e = %g", e);
+    SCOPED_TRACE(label);
+    const Agreement shallow = compute(label, F, P, 2.2, 24);
     EXPECT_TRUE(shallow.ref.degenerate.empty());
     EXPECT_EQ(shallow.reference.size(), 12u);  // two triangles per face of the cube, one diagonal each
     EXPECT_TRUE(std::includes(shallow.reference.begin(), shallow.reference.end(), shallow.engine.begin(),
@@ -431,7 +433,7 @@ TEST(RestrictedCellVersusReference, NearlyCocircularCubeIsSoundAtAnyDepth) {
       }
     expect_consistent(shallow, true);
     expect_vertices_recheck(shallow, P, F);
-    const Agreement deep = compute("perturbed cube, e = " + std::to_string(e), F, P, 2.2, 48);
+    const Agreement deep = compute(label, F, P, 2.2, 48);
     expect_decided(deep);
     expect_equal_sets(deep);
     expect_consistent(deep);
