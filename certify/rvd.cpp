@@ -300,10 +300,10 @@ class CellAnalysis {
     const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
     // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
     // Hc's faces: the difference is taken with Hc widened by twice its width on each side (plus
-    // 2^-30 b), where G keeps a sign that interval arithmetic can see. Sound for any widening.
+    // 2^-40 (|Hc| + b)), where G keeps a sign that interval arithmetic can see. Sound for any widening.
     Box Hc = ch.H;
     for (auto& i : Hc) {
-      const double d = (IA(2) * (IA(i.hi) - IA(i.lo)) + IA(b) * IA(0x1p-30)).sup();
+      const double d = (IA(2) * (IA(i.hi) - IA(i.lo)) + (IA(std::abs(i.lo)) + IA(std::abs(i.hi)) + IA(b)) * IA(0x1p-40)).sup();
       i = Interval{(IA(i.lo) - IA(d)).inf(), (IA(i.hi) + IA(d)).sup()};
     }
     const bool chart_slab = ch.status == exact::ChartStatus::unique && intersect(Hc, H) &&
@@ -311,8 +311,14 @@ class CellAnalysis {
     if (chart_slab) {
       // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
       // lies in its contraction, which is then the slab (tight covering bounds and signs).
+      // (Parametric Krawczyk: whatever its status, its box holds every root in Hc of every u in U;
+      // `none`: there is none, and the box is free of M.)
       const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
-      H = tight.status == exact::ChartStatus::unique ? tight.H : std::move(Hc);
+      if (tight.status == exact::ChartStatus::none) {
+        ++report_.discarded;
+        return;
+      }
+      H = tight.H;
     } else {
       ++report_.chart_failures;
       if (excluded(w.U, H, w.S, opt_.normal_levels)) {
