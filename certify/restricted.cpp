@@ -18,9 +18,10 @@ double nearest_distance(const io::PointSet& P, const detail::PointGrid& grid, in
     double best = INFINITY;
     for (int q : grid.ball(pp, t)) {
       if (q == p) continue;
-      double d = 0;
-      for (std::size_t v = 0; v < pp.size(); ++v) d += (P.point(q)[v] - pp[v]) * (P.point(q)[v] - pp[v]);
-      best = std::min(best, std::sqrt(d));
+      double scale = 0, d = 0;  // scaled, so that neither 1e-300 nor 1e300 coordinates under/overflow
+      for (std::size_t v = 0; v < pp.size(); ++v) scale = std::max(scale, std::abs(P.point(q)[v] - pp[v]));
+      for (std::size_t v = 0; v < pp.size(); ++v) d += std::pow((P.point(q)[v] - pp[v]) / scale, 2);
+      best = std::min(best, scale * std::sqrt(d));
     }
     if (best <= t) return best;
     if (t >= grid.diameter()) return best;
@@ -40,6 +41,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   detail::parallel_for(n, o.threads, [&](std::size_t p, int) { nn[p] = nearest_distance(P, grid, static_cast<int>(p)); });
   double r = 2 * *std::max_element(nn.begin(), nn.end());
   const double r_cap = 2 * grid.diameter();  // a ball this large holds all of P: larger never helps
+  if (!(r > 0 && std::isfinite(r))) r = grid.diameter();
   std::vector<int> todo(n);
   for (int p = 0; p < n; ++p) todo[p] = p;
   for (int round = 0; !todo.empty(); ++round) {

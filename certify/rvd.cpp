@@ -101,6 +101,13 @@ class CellAnalysis {
     for (const auto& g : G_) {
       G_coef_.emplace_back();
       for (const auto& t : g.terms()) G_coef_.back().push_back(exact::enclose(t.coefficient));
+      dG_.emplace_back();
+      dG_coef_.emplace_back();
+      for (int l = 0; l < k_; ++l) {
+        dG_.back().push_back(g.derivative(m_ + l));
+        dG_coef_.back().emplace_back();
+        for (const auto& t : dG_.back().back().terms()) dG_coef_.back().back().push_back(exact::enclose(t.coefficient));
+      }
     }
     // Candidates: every point of the closed ball B(p, 2r) (see the header); 2r is exact.
     const std::span<const double> pp = points.point(p);
@@ -224,6 +231,32 @@ class CellAnalysis {
     report_.undecided.push_back({std::move(location), simplex_of(w.S), std::move(reason)});
   }
 
+  // True when some chart equation G_e has no zero on U x H: its enclosure on the box has a strict
+  // sign, or G_e is monotone in some h_l on the box (dG_e/dh_l excludes 0) and its enclosures on
+  // the two faces h_l = lo, h_l = hi have the same strict sign (then every value on the box lies
+  // between values on the faces). The face test sees the sign near a slab edge that the plain
+  // enclosure of a wide box loses. Under upward rounding.
+  bool free_of_M(const Box& U, const Box& H) const {
+    std::vector<IA> z;
+    for (const auto& i : U) z.push_back(ia(i));
+    for (const auto& i : H) z.push_back(ia(i));
+    auto eval = [&](const exact::Polynomial& P, const std::vector<Interval>& coef, const std::vector<IA>& at) {
+      return P.evaluate_with<IA>(at, [&](std::size_t t) { return ia(coef[t]); });
+    };
+    auto strict = [](const IA& g) { return g.inf() > 0 || g.sup() < 0; };
+    for (std::size_t e = 0; e < G_.size(); ++e) {
+      if (strict(eval(G_[e], G_coef_[e], z))) return true;
+      for (int l = 0; l < k_; ++l) {
+        if (!strict(eval(dG_[e][l], dG_coef_[e][l], z))) continue;
+        std::vector<IA> lo = z, hi = z;
+        lo[m_ + l] = IA(H[l].lo), hi[m_ + l] = IA(H[l].hi);
+        const IA a = eval(G_[e], G_coef_[e], lo), b = eval(G_[e], G_coef_[e], hi);
+        if ((a.inf() > 0 && b.inf() > 0) || (a.sup() < 0 && b.sup() < 0)) return true;
+      }
+    }
+    return false;
+  }
+
   // a := a ∩ b; false when empty.
   static bool intersect(Box& a, const Box& b) {
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -258,13 +291,7 @@ class CellAnalysis {
   // `levels` times (an ambient search in the normal directions). Under upward rounding.
   bool excluded(const Box& U, Box H, const std::vector<int>& S, int levels) const {
     if (dist2(U, H).inf() >= r2_.sup()) return true;
-    std::vector<IA> z;
-    for (const auto& i : U) z.push_back(ia(i));
-    for (const auto& i : H) z.push_back(ia(i));
-    for (std::size_t e = 0; e < G_.size(); ++e) {
-      const IA g = G_[e].evaluate_with<IA>(z, [&](std::size_t t) { return ia(G_coef_[e][t]); });
-      if (g.inf() > 0 || g.sup() < 0) return true;
-    }
+    if (free_of_M(U, H)) return true;
     for (int i : S)
       if (sign_form(cands_[i], U, H).sup() < 0) return true;
     if (levels == 0) return false;
@@ -281,7 +308,6 @@ class CellAnalysis {
   void visit(Work w, std::vector<Work>& stack) {
     ++report_.boxes;
     report_.max_depth = std::max(report_.max_depth, w.depth);
-    const Work original = w;  // what the second pass revisits (the parent's S and slab)
     exact::UpwardRounding up;
     // The region: U x Hpar, Hpar = the parent's slab cut to H_ball(U) = [-b, b]^k with
     // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
@@ -296,18 +322,38 @@ class CellAnalysis {
       ++report_.discarded;
       return;
     }
+    // Cheap first: the region itself outside the ball or certainly closer to a candidate.
+    if (dist2(w.U, H).inf() >= r2_.sup()) {
+      ++report_.discarded;
+      return;
+    }
+    for (int i : w.S)
+      if (sign_form(cands_[i], w.U, H).sup() < 0) {
+        ++report_.discarded;
+        return;
+      }
     // The chart's slab replaces it when the rest of the region is excluded (THE SLAB INVARIANT).
     const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
     // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
-    // Hc's faces: the difference is taken with Hc widened by twice its width on each side (plus
-    // 2^-40 (|Hc| + b)), where G keeps a sign that interval arithmetic can see. Sound for any widening.
-    Box Hc = ch.H;
-    for (auto& i : Hc) {
-      const double d = (IA(2) * (IA(i.hi) - IA(i.lo)) + (IA(std::abs(i.lo)) + IA(std::abs(i.hi)) + IA(b)) * IA(0x1p-40)).sup();
-      i = Interval{(IA(i.lo) - IA(d)).inf(), (IA(i.hi) + IA(d)).sup()};
+    // Hc's faces: the difference is taken with Hc widened on each side by twice its width plus the
+    // widest side of U (the enclosure of G on a face loses about |dG/du| width(U), which the
+    // widening must beat) plus 2^-40 (|Hc| + b), then by 16 times that if the difference is not
+    // excluded. Sound for any widening: it only decides how much of the region the chart's slab
+    // takes over.
+    double widest_u = 0;
+    for (const auto& i : w.U) widest_u = std::max(widest_u, i.width());
+    Box Hc;
+    bool chart_slab = false;
+    for (int attempt = 0; attempt < 2 && !chart_slab && ch.status == exact::ChartStatus::unique; ++attempt) {
+      Hc = ch.H;
+      for (auto& i : Hc) {
+        const IA d = (IA(2) * (IA(i.hi) - IA(i.lo)) + IA(widest_u) +
+                      (IA(std::abs(i.lo)) + IA(std::abs(i.hi)) + IA(b)) * IA(0x1p-40)) *
+                     IA(attempt ? 16 : 1);
+        i = Interval{(IA(i.lo) - d).inf(), (IA(i.hi) + d).sup()};
+      }
+      chart_slab = intersect(Hc, H) && difference_excluded(w.U, H, Hc, w.S);
     }
-    const bool chart_slab = ch.status == exact::ChartStatus::unique && intersect(Hc, H) &&
-                            difference_excluded(w.U, H, Hc, w.S);
     if (chart_slab) {
       // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
       // lies in its contraction, which is then the slab (tight covering bounds and signs).
@@ -326,7 +372,10 @@ class CellAnalysis {
         return;
       }
     }
+    // The parent's slab and candidates move aside: the second pass revisits the box with them.
+    Box H_in = std::move(w.H);
     w.H = H;
+    std::vector<int> S_in = w.S;
     IA d2;
     {
       if (dist2(w.U, H).inf() >= r2_.sup()) {
@@ -356,7 +405,9 @@ class CellAnalysis {
     // First pass: every resolved box with another candidate waits for the second pass, where the
     // vertices of the cell are known and PURITY can be checked.
     if (resolved && !refining_ && (!fine || n >= 2)) {
-      pending_.push_back(original);
+      w.H = std::move(H_in);
+      w.S = std::move(S_in);
+      pending_.push_back(std::move(w));
       return;
     }
     std::vector<int> face;
@@ -509,6 +560,8 @@ class CellAnalysis {
   IA r2_;                                        // r^2, enclosed
   std::vector<exact::Polynomial> G_;                    // the chart equations G(u, h)
   std::vector<std::vector<Interval>> G_coef_;    // their coefficients, enclosed
+  std::vector<std::vector<exact::Polynomial>> dG_;               // dG_e / dh_l
+  std::vector<std::vector<std::vector<Interval>>> dG_coef_;      // their coefficients, enclosed
   std::vector<Candidate> cands_;
   std::map<std::vector<int>, exact::SquareSystem> systems_;
   RestrictedCellReport report_;

@@ -66,14 +66,14 @@ namespace delcert::certify {
 struct RestrictedCellOptions {
   double graph_radius = 0;      // r > 0: the cell is analysed in the open ball B(p, r)
   int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
-  long max_boxes = 200000;      // boxes visited per point; beyond it the rest is undecided
+  long max_boxes = 50000;       // boxes visited per point; beyond it the rest is undecided
   // Kept boxes with more candidates than p are split further (second pass) while their widest
   // u-side exceeds this fraction of rho_u and their bound exceeds the distance from p to the
   // farthest vertex found (sharpens covering_bound near the cell's corners; work only).
   double covering_width = 1.0 / 128;
   // Kept boxes whose candidate set has a face in no vertex simplex found (PURITY) are split while
   // their widest u-side exceeds this fraction of rho_u; narrower, the face is listed as unresolved.
-  double purity_width = 1.0 / 1024;
+  double purity_width = 0x1p-14;
   // Where the chart fails, the normal slab H_ball(U) is searched by halving up to this many times.
   int normal_levels = 6;
 };

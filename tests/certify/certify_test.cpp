@@ -12,9 +12,11 @@ struct Case {
 };
 
 // Writes points, complex and claims to `dir` and certifies them.
+// `restricted`: also checks 11-13 (most tests here are about Del_TM; restricted_test.cpp covers them).
 Certificate certify(const TempDir& dir, const std::string& spec, const io::PointSet& P, const io::Complex* K,
-                    const std::string& claims_json = "", int threads = 1) {
+                    const std::string& claims_json = "", int threads = 1, bool restricted = false) {
   CertifyOptions o;
+  o.skip_restricted = !restricted;
   o.manifold = spec;
   o.points = dir.file("points.txt");
   io::write_points(o.points, P);
@@ -89,9 +91,9 @@ TEST(Certify, DeterministicAndThreadIndependent) {
   TempDir dir("det");
   io::PointSet P = fibonacci_sphere(120);
   Audit A = audit("builtin:sphere-2", P);
-  std::string one = certify(dir, "builtin:sphere-2", P, &A.complex, "", 1).to_text(false);
-  std::string again = certify(dir, "builtin:sphere-2", P, &A.complex, "", 1).to_text(false);
-  std::string three = certify(dir, "builtin:sphere-2", P, &A.complex, "", 3).to_text(false);
+  std::string one = certify(dir, "builtin:sphere-2", P, &A.complex, "", 1, true).to_text(false);
+  std::string again = certify(dir, "builtin:sphere-2", P, &A.complex, "", 1, true).to_text(false);
+  std::string three = certify(dir, "builtin:sphere-2", P, &A.complex, "", 3, true).to_text(false);
   EXPECT_EQ(one, again);
   EXPECT_EQ(one, three);
 }

@@ -106,6 +106,7 @@ std::string claims_for(const Certificate& c) {
 // Audit, then verify the audited complex with claims derived from the audit: two comparisons.
 void audit_and_verify(const std::string& what, const std::string& spec, const io::PointSet& P, const TempDir& dir) {
   CertifyOptions o;
+  o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
   o.manifold = spec;
   o.points = dir.file("points.txt");
   io::write_points(o.points, P);
@@ -211,6 +212,7 @@ TEST(CertifyDifferential, UlpMovesOfValidInputs) {
         v = std::nextafter(v, rng.below(2) ? INFINITY : -INFINITY);
       }
       CertifyOptions o;
+      o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
       o.manifold = C.spec;
       o.points = dir.file("points.txt");
       io::write_points(o.points, P);
@@ -225,12 +227,14 @@ TEST(CertifyDifferential, UlpMovesOfValidInputs) {
 // The soundness fixtures that reach the predicates (the overflow case: audit and verify).
 TEST(CertifyDifferential, SoundnessFixtures) {
   CertifyOptions o;
+  o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
   o.manifold = fixture("soundness/overflow/spec.json");
   o.points = fixture("soundness/overflow/points.txt");
   differential("soundness/overflow (audit)", o);
   o.complex = fixture("soundness/overflow/complex.txt");
   differential("soundness/overflow (verify)", o);
   o = CertifyOptions{};
+  o.skip_restricted = true;
   o.manifold = "builtin:sphere-2";
   o.points = fixture("points/octahedron.off");
   o.complex = fixture("certify/octahedron.complex");
@@ -256,6 +260,7 @@ TEST(CertifyDifferential, AdversarialPointSets) {
       v = std::nextafter(v, INFINITY);
     }
     CertifyOptions o;
+    o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
     o.manifold = plane;
     o.points = dir.file("plane.txt");
     io::write_points(o.points, P);
@@ -274,6 +279,7 @@ TEST(CertifyDifferential, AdversarialPointSets) {
       P.push_back(std::vector<double>{x[0] + h * (rng.uniform() - 0.5), x[1] + h * (rng.uniform() - 0.5)});
     }
     CertifyOptions o;
+    o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
     o.manifold = curve;
     o.points = dir.file("curve.txt");
     io::write_points(o.points, P);

@@ -52,6 +52,7 @@ std::string claims_for(const Certificate& c) {
 Certificate run_case(const TempDir& dir, const std::string& spec, const io::PointSet& P, const io::Complex& K,
                      const std::string& claims) {
   CertifyOptions o;
+  o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
   o.manifold = spec;
   o.points = dir.file("points.txt");
   o.complex = dir.file("complex.txt");
@@ -273,6 +274,7 @@ Base make_base(const std::string& spec, const std::string& shape, double scale, 
   TempDir dir("base");
   Base B{spec, shape, scale, P, A.complex, "", per_kind, seed};
   CertifyOptions o;
+  o.skip_restricted = true;  // these tests are about Del_TM (checks 11-13: restricted_test.cpp)
   o.manifold = spec;
   o.points = dir.file("points.txt");
   io::write_points(o.points, P);

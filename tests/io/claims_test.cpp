@@ -27,13 +27,6 @@ TEST(Claims, ParsesExactRationals) {
   EXPECT_EQ(*v2.covering, mpq_class(1, 4));
 }
 
-// Version 2 splits version 1's "eps" into two different promises and refuses the old name.
-TEST(Claims, Version2RefusesTheAmbiguousEps) {
-  expect_error("{\"format\": \"delcert-claims v2\",\n \"eps\": \"0.1\"}", 2, "star_radius");
-  expect_error("{\"format\": \"delcert-claims v1\",\n \"covering\": \"0.1\"}", 2, "unknown claim");
-  expect_error("{\"format\": \"delcert-claims v2\",\n \"covering\": \"0\"}", 2, "positive");
-}
-
 void expect_error(const std::string& text, long line, const std::string& fragment) {
   try {
     parse_claims(text, "c.json");
@@ -43,6 +36,13 @@ void expect_error(const std::string& text, long line, const std::string& fragmen
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).rfind("c.json:" + std::to_string(line) + ":", 0), 0u) << e.what();
   }
+}
+
+// Version 2 splits version 1's "eps" into two different promises and refuses the old name.
+TEST(Claims, Version2RefusesTheAmbiguousEps) {
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"eps\": \"0.1\"}", 2, "star_radius");
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"covering\": \"0.1\"}", 2, "unknown claim");
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"covering\": \"0\"}", 2, "positive");
 }
 
 TEST(Claims, RefusesMalformedInput) {

@@ -1,0 +1,244 @@
+// Checks 11-13 of the certificate (certify/restricted.hpp): the certified covering radius, Del_RM(P)
+// and Del_TM(P) = Del_RM(P), on known answers, mutants and exactly degenerate input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "certify/certify.hpp"
+#include "exact/number_types.hpp"
+#include "exact/polynomial.hpp"
+#include "io/complex.hpp"
+#include "io/input_error.hpp"
+#include "io/points.hpp"
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+const CheckEntry& entry(const Certificate& c, CheckId id) {
+  for (const auto& e : c.checks)
+    if (e.id == id) return e;
+  throw std::logic_error("no such check");
+}
+
+Certificate certify_points(const std::string& spec, const io::PointSet& P, const TempDir& dir,
+                           const std::string& complex = "", const std::string& claims = "") {
+  CertifyOptions o;
+  o.manifold = spec;
+  o.points = dir.file("points.txt");
+  io::write_points(o.points, P);
+  o.complex = complex;
+  if (!claims.empty()) {
+    o.claims = dir.file("claims.json");
+    write_text(o.claims, claims);
+  }
+  return run_certify(o);
+}
+
+double covering_upper(const CheckEntry& e) { return std::stod(e.margin["covering_radius"]["certified_upper_bound"].get<std::string>()); }
+double covering_lower(const CheckEntry& e) { return std::stod(e.margin["covering_radius"]["certified_lower_bound"].get<std::string>()); }
+
+// The octahedron on the unit sphere: Del_RM = Del_TM = its 8 faces; the farthest points of S^2
+// from its vertices are the face centres (±1, ±1, ±1)/sqrt 3, at distance sqrt(2 - 2/sqrt 3) =
+// 0.91940 (the true covering radius, which both certified bounds must bracket).
+TEST(RestrictedChecks, OctahedronKnownAnswers) {
+  TempDir dir("restricted-octahedron");
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  o.points = fixture("points/octahedron.off");
+  const Certificate audit = run_certify(o);
+  const double truth = std::sqrt(2 - 2 / std::sqrt(3.0));
+  const CheckEntry& cov = entry(audit, CheckId::covering);
+  EXPECT_EQ(cov.verdict, Verdict::certified) << cov.summary;
+  EXPECT_GE(covering_upper(cov), truth);
+  EXPECT_LE(covering_lower(cov), truth);
+  EXPECT_GT(covering_lower(cov), truth - 1e-6);  // the face centres are restricted Voronoi vertices
+  EXPECT_LT(covering_upper(cov), 1.0);
+  EXPECT_EQ(entry(audit, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_EQ(entry(audit, CheckId::restricted_delaunay).details["m_simplices"], 8);
+  EXPECT_EQ(entry(audit, CheckId::tangential_equals_restricted).verdict, Verdict::certified);
+  EXPECT_EQ(audit.overall(), Verdict::certified);
+
+  // The OFF octahedron is claimed to be restricted Delaunay (the default kind for OFF).
+  o.complex = fixture("complexes/octahedron.off");
+  const Certificate verify = run_certify(o);
+  EXPECT_EQ(verify.parameters["kind"], "restricted");
+  EXPECT_EQ(entry(verify, CheckId::restricted_delaunay).verdict, Verdict::certified)
+      << entry(verify, CheckId::restricted_delaunay).summary;
+  EXPECT_EQ(entry(verify, CheckId::tangential_equals_restricted).verdict, Verdict::report);
+  EXPECT_EQ(verify.overall(), Verdict::certified);
+}
+
+// The covering claim: below the certified upper bound it is not certified; below the farthest
+// certified vertex it is refuted, with that vertex as witness.
+TEST(RestrictedChecks, CoveringClaimIsDecidedEitherWay) {
+  TempDir dir("restricted-claims");
+  const io::PointSet P = io::read_points(fixture("points/octahedron.off"));
+  auto verdict_for = [&](const std::string& claim) {
+    const Certificate c = certify_points("builtin:sphere-2", P, dir, "",
+                                         R"({"format": "delcert-claims v2", "covering": ")" + claim + "\"}");
+    return entry(c, CheckId::covering);
+  };
+  EXPECT_EQ(verdict_for("1").verdict, Verdict::certified);
+  const CheckEntry low = verdict_for("0.9");
+  ASSERT_EQ(low.verdict, Verdict::refuted);
+  ASSERT_FALSE(low.witnesses.empty());
+  EXPECT_EQ(low.witnesses[0]["kind"], "restricted_voronoi_vertex");
+  // Re-check the witness independently: its enclosure is at distance >= 0.9 from every point.
+  for (const auto& w : low.witnesses) {
+    std::vector<std::pair<double, double>> box;
+    for (const auto& iv : w["vertex_enclosure"]) box.push_back({std::stod(iv[0].get<std::string>()), std::stod(iv[1].get<std::string>())});
+    for (std::size_t q = 0; q < P.size(); ++q) {
+      double d2 = 0;  // squared distance from the point to the box (a lower bound for every x in it)
+      for (int k = 0; k < 3; ++k) {
+        const double x = P.point(q)[k];
+        const double g = x < box[k].first ? box[k].first - x : x > box[k].second ? x - box[k].second : 0;
+        d2 += g * g;
+      }
+      EXPECT_GT(d2, 0.9 * 0.9 * (1 - 1e-12)) << q;
+    }
+  }
+  // Between the two certified bounds nothing is decided.
+  EXPECT_EQ(verdict_for("0.93").verdict, Verdict::undecided);
+}
+
+// Del_TM = Del_RM on a good sample of S^2, certified.
+TEST(RestrictedChecks, GoodSphereSampleHasEqualComplexes) {
+  TempDir dir("restricted-sphere");
+  const io::PointSet P = fibonacci_sphere(200);
+  const Certificate c = certify_points("builtin:sphere-2", P, dir);
+  EXPECT_EQ(entry(c, CheckId::covering).verdict, Verdict::certified) << entry(c, CheckId::covering).summary;
+  EXPECT_EQ(entry(c, CheckId::restricted_delaunay).verdict, Verdict::certified)
+      << entry(c, CheckId::restricted_delaunay).summary;
+  EXPECT_EQ(entry(c, CheckId::tangential_equals_restricted).verdict, Verdict::certified);
+  EXPECT_EQ(entry(c, CheckId::restricted_delaunay).details["m_simplices"], 2 * 200 - 4);  // a triangulated S^2
+}
+
+// Mutants of Del_RM of a sphere mesh (OFF: claimed restricted) are never CERTIFIED: a dropped
+// triangle is refuted by its certified vertex; an added or replaced one is refuted as not
+// restricted (Del_RM is complete here).
+TEST(RestrictedChecks, MutantsOfARestrictedMeshAreNeverCertified) {
+  TempDir dir("restricted-mutants");
+  const io::PointSet P = fibonacci_sphere(60);
+  const Certificate audit_cert = certify_points("builtin:sphere-2", P, dir);
+  ASSERT_EQ(entry(audit_cert, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  const Audit A = audit("builtin:sphere-2", P);  // Del_TM, equal to Del_RM here (check 13)
+  ASSERT_EQ(entry(audit_cert, CheckId::tangential_equals_restricted).verdict, Verdict::certified);
+  auto run_mutant = [&](const io::Complex& K) {
+    CertifyOptions o;
+    o.manifold = "builtin:sphere-2";
+    o.points = dir.file("points.txt");
+    o.complex = dir.file("mutant.txt");
+    o.kind = ComplexKind::restricted;
+    io::write_complex(o.complex, K);
+    return run_certify(o);
+  };
+  {
+    const Certificate base = run_mutant(A.complex);
+    EXPECT_EQ(entry(base, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  }
+  io::Complex dropped = A.complex;
+  const std::vector<int> gone = dropped.simplices[7];
+  dropped.simplices.erase(dropped.simplices.begin() + 7);
+  const Certificate d = run_mutant(dropped);
+  const CheckEntry& dd = entry(d, CheckId::restricted_delaunay);
+  ASSERT_EQ(dd.verdict, Verdict::refuted);
+  std::vector<int> gone_sorted = gone;
+  std::sort(gone_sorted.begin(), gone_sorted.end());
+  EXPECT_EQ(dd.witnesses[0]["simplex"].get<std::vector<int>>(), gone_sorted);
+  EXPECT_EQ(dd.witnesses[0]["kind"], "restricted_voronoi_vertex");
+
+  io::Complex added = A.complex;
+  added.simplices.push_back({0, 1, 30});  // not a restricted Delaunay triangle
+  EXPECT_NE(run_mutant(added).overall(), Verdict::certified);
+  EXPECT_EQ(entry(run_mutant(added), CheckId::restricted_delaunay).verdict, Verdict::refuted);
+
+  io::Complex replaced = A.complex;
+  replaced.simplices[3] = {replaced.simplices[3][0], replaced.simplices[3][1], (replaced.simplices[3][2] + 17) % 60};
+  EXPECT_EQ(entry(run_mutant(replaced), CheckId::restricted_delaunay).verdict, Verdict::refuted);
+}
+
+// A sample with a hole: every point within angle 0.7 of the north pole removed. The covering
+// bound is at least the distance from the pole to the nearest point.
+TEST(RestrictedChecks, CoveringBoundSeesAHole) {
+  TempDir dir("restricted-hole");
+  const io::PointSet all = fibonacci_sphere(300);
+  std::vector<std::vector<double>> kept;
+  double to_pole = INFINITY;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto x = all.point(i);
+    if (std::acos(std::clamp(x[2], -1.0, 1.0)) < 0.7) continue;
+    kept.push_back({x[0], x[1], x[2]});
+    to_pole = std::min(to_pole, std::hypot(x[0], x[1], x[2] - 1));
+  }
+  const Certificate c = certify_points("builtin:sphere-2", make_points(3, kept), dir);
+  const CheckEntry& cov = entry(c, CheckId::covering);
+  ASSERT_EQ(cov.verdict, Verdict::certified) << cov.summary;
+  EXPECT_GE(covering_upper(cov), to_pole);
+  EXPECT_GE(covering_lower(cov), 0.5 * to_pole);
+}
+
+// Exactly degenerate inputs are never CERTIFIED: the cube on its circumsphere (every face's
+// centre is equidistant from 4 points) and a square grid on the flat torus.
+TEST(RestrictedChecks, ExactlyDegenerateInputIsNeverCertified) {
+  TempDir dir("restricted-degenerate");
+  std::vector<std::vector<double>> cube;
+  for (int i = 0; i < 8; ++i) cube.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
+  const std::string spec = dir.file("sphere-sqrt3.json");
+  write_text(spec, R"({"format": "delcert-manifold v1", "name": "sphere of radius sqrt 3", "intrinsic_dimension": 2,
+                      "ambient_dimension": 3, "equations": ["x1^2 + x2^2 + x3^2 - 3"],
+                      "bounding_box": [["-2", "2"], ["-2", "2"], ["-2", "2"]]})");
+  const Certificate c = certify_points(spec, make_points(3, cube), dir);
+  EXPECT_NE(entry(c, CheckId::covering).verdict, Verdict::certified);
+  EXPECT_NE(entry(c, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_NE(c.overall(), Verdict::certified);
+
+  CertifyOptions o;
+  o.manifold = "builtin:clifford-torus-2";
+  o.points = fixture("certify/clifford-square-grid.txt");
+  const Certificate grid = run_certify(o);
+  EXPECT_NE(entry(grid, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_NE(grid.overall(), Verdict::certified);
+}
+
+// Adversarial magnitudes: the octahedron scaled by 2^k on the sphere of radius 2^k. Whatever the
+// verdicts, a certified covering bound is never below the true value sqrt(2 - 2/sqrt 3) 2^k.
+TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
+  TempDir dir("restricted-scaled");
+  int certified = 0;
+  for (int k : {-1000, -520, -300, 300, 500}) {
+    std::vector<std::vector<double>> pts;
+    const double s = std::ldexp(1.0, k);
+    for (int a = 0; a < 3; ++a)
+      for (double sign : {1.0, -1.0}) {
+        std::vector<double> x(3, 0.0);
+        x[a] = sign * s;
+        pts.push_back(x);
+      }
+    const mpq_class S = exact::to_rational(s);
+    const std::string spec = dir.file("sphere.json");
+    const std::string b = exact::rational_to_string(2 * S);
+    write_text(spec, R"({"format": "delcert-manifold v1", "name": "scaled sphere", "intrinsic_dimension": 2,
+                        "ambient_dimension": 3, "equations": ["x1^2 + x2^2 + x3^2 - )" +
+                         exact::rational_to_string(S * S) + R"("], "bounding_box": [["-)" + b + "\", \"" + b +
+                         R"("], ["-)" + b + "\", \"" + b + R"("], ["-)" + b + "\", \"" + b + R"("]]})");
+    Certificate c;
+    try {
+      c = certify_points(spec, make_points(3, pts), dir);
+    } catch (const io::InputError& e) {
+      ADD_FAILURE() << k << ": " << e.what();
+      continue;
+    }
+    const CheckEntry& cov = entry(c, CheckId::covering);
+    std::printf("octahedron scaled by 2^%d: covering %s: %s\n", k, to_string(cov.verdict), cov.summary.c_str());
+    if (cov.verdict != Verdict::certified) continue;
+    ++certified;
+    EXPECT_GE(covering_upper(cov) / s, std::sqrt(2 - 2 / std::sqrt(3.0)) * (1 - 1e-12)) << k;
+    EXPECT_LE(covering_lower(cov) / s, std::sqrt(2 - 2 / std::sqrt(3.0)) * (1 + 1e-12)) << k;
+  }
+  std::printf("%d of 5 scaled octahedra certified\n", certified);
+}
+
+}  // namespace
+}  // namespace delcert::certify::test
