@@ -820,6 +820,14 @@ Certificate run_certify(const CertifyOptions& o) {
   if (o.skip_restricted) {
     covering = not_computed(CheckId::covering), restricted = not_computed(CheckId::restricted_delaunay);
     equal = not_computed(CheckId::tangential_equals_restricted);
+  } else if (m > 3) {
+    for (auto* e : {&covering, &restricted, &equal}) {
+      *e = not_computed(e == &covering ? CheckId::covering : e == &restricted ? CheckId::restricted_delaunay
+                                                                              : CheckId::tangential_equals_restricted);
+      (*e)->verdict = Verdict::certified;
+      (*e)->undecide("the certified restricted Voronoi diagram is built for m <= 3 (here m = " + std::to_string(m) + ")");
+      (*e)->summary = "not computed: " + (*e)->details["reason"].get<std::string>();
+    }
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;

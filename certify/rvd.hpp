@@ -73,7 +73,7 @@ struct RestrictedCellOptions {
   double covering_width = 1.0 / 128;
   // Kept boxes whose candidate set has a face in no vertex simplex found (PURITY) are split while
   // their widest u-side exceeds this fraction of rho_u; narrower, the face is listed as unresolved.
-  double purity_width = 0x1p-14;
+  double purity_width = 0x1p-20;
   // Where the chart fails, the normal slab H_ball(U) is searched by halving up to this many times.
   int normal_levels = 6;
 };

@@ -103,8 +103,11 @@ long check_directory(const std::string& dir, const std::vector<std::string>& all
 }
 
 TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
-  // 5000: the certified RVD engine (certify/rvd.*) is part of the checker by design (issue 11).
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 5000) << "certify/ should stay small enough to read whole";
+  // The budget, decided (issue 11): the checker is checks 1-10 (~4000 lines) plus the certified
+  // restricted Voronoi diagram and checks 11-13 (certify/rvd.*, certify/restricted.*, ~1100 lines),
+  // which are part of the checker by design: 5500 lines, a long afternoon's reading. Issue 12
+  // (Del_M) reuses the RVD engine and must fit in this budget or argue for a new one.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 5500) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
