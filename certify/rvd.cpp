@@ -3,6 +3,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -21,6 +22,28 @@ using exact::Interval;
 using IA = exact::IntervalNumber;
 
 IA ia(const Interval& i) { return exact::to_interval_number(i); }
+
+// A buffer of n values, on the stack when n <= Cap (the usual small dimensions), else on the heap.
+template <class T, std::size_t Cap>
+class Scratch {
+ public:
+  explicit Scratch(std::size_t n) : n_(n) {
+    if (n > Cap) heap_.resize(n);
+    data_ = n > Cap ? heap_.data() : local_.data();
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  T& operator[](std::size_t i) { return data_[i]; }
+  T* begin() { return data_; }
+  T* end() { return data_ + n_; }
+  std::span<const T> span() const { return {data_, n_}; }
+
+ private:
+  std::size_t n_;
+  std::array<T, Cap> local_{};
+  std::vector<T> heap_;
+  T* data_;
+};
 
 // A certified lower bound (> 0) of the smallest eigenvalue of the exact Gram matrix of the
 // columns of A (rows x cols): the larger of Gershgorin's bound and det / trace^(cols - 1) (the
@@ -64,6 +87,9 @@ struct Candidate {
   mpq_class c;
   std::vector<mpq_class> a, b;
   std::vector<Interval> c_enc, a_enc, b_enc;
+  // 2 a and 2 b enclosed (doubling an enclosure is exact: the same intervals sign_form computed
+  // from a_enc, b_enc before they were cached here).
+  std::vector<IA> a2, b2;
 };
 
 struct Work {
@@ -127,6 +153,11 @@ class CellAnalysis {
       C.c_enc = {exact::enclose(C.c)};
       for (const auto& x : C.a) C.a_enc.push_back(exact::enclose(x));
       for (const auto& x : C.b) C.b_enc.push_back(exact::enclose(x));
+      {
+        exact::UpwardRounding up;
+        for (const auto& x : C.a_enc) C.a2.push_back(IA(2) * ia(x));
+        for (const auto& x : C.b_enc) C.b2.push_back(IA(2) * ia(x));
+      }
       cands_.push_back(std::move(C));
     }
   }
@@ -196,8 +227,8 @@ class CellAnalysis {
   // Interval hull of s_q over U x H.
   IA sign_form(const Candidate& C, const Box& U, const Box& H) const {
     IA s = ia(C.c_enc[0]);
-    for (int a = 0; a < m_; ++a) s -= IA(2) * ia(C.a_enc[a]) * ia(U[a]);
-    for (int l = 0; l < k_; ++l) s -= IA(2) * ia(C.b_enc[l]) * ia(H[l]);
+    for (int a = 0; a < m_; ++a) s -= C.a2[a] * ia(U[a]);
+    for (int l = 0; l < k_; ++l) s -= C.b2[l] * ia(H[l]);
     return s;
   }
   // Enclosure of |x - p|^2 = |T u + Nn h|^2 over U x H.
@@ -237,20 +268,22 @@ class CellAnalysis {
   // between values on the faces). The face test sees the sign near a slab edge that the plain
   // enclosure of a wide box loses. Under upward rounding.
   bool free_of_M(const Box& U, const Box& H) const {
-    std::vector<IA> z;
-    for (const auto& i : U) z.push_back(ia(i));
-    for (const auto& i : H) z.push_back(ia(i));
-    auto eval = [&](const exact::Polynomial& P, const std::vector<Interval>& coef, const std::vector<IA>& at) {
+    Scratch<IA, 16> z(m_ + k_), face(m_ + k_);
+    for (int a = 0; a < m_; ++a) z[a] = ia(U[a]);
+    for (int l = 0; l < k_; ++l) z[m_ + l] = ia(H[l]);
+    auto eval = [&](const exact::Polynomial& P, const std::vector<Interval>& coef, std::span<const IA> at) {
       return P.evaluate_with<IA>(at, [&](std::size_t t) { return ia(coef[t]); });
     };
     auto strict = [](const IA& g) { return g.inf() > 0 || g.sup() < 0; };
     for (std::size_t e = 0; e < G_.size(); ++e) {
-      if (strict(eval(G_[e], G_coef_[e], z))) return true;
+      if (strict(eval(G_[e], G_coef_[e], z.span()))) return true;
       for (int l = 0; l < k_; ++l) {
-        if (!strict(eval(dG_[e][l], dG_coef_[e][l], z))) continue;
-        std::vector<IA> lo = z, hi = z;
-        lo[m_ + l] = IA(H[l].lo), hi[m_ + l] = IA(H[l].hi);
-        const IA a = eval(G_[e], G_coef_[e], lo), b = eval(G_[e], G_coef_[e], hi);
+        if (!strict(eval(dG_[e][l], dG_coef_[e][l], z.span()))) continue;
+        std::copy(z.begin(), z.end(), face.begin());
+        face[m_ + l] = IA(H[l].lo);
+        const IA a = eval(G_[e], G_coef_[e], face.span());
+        face[m_ + l] = IA(H[l].hi);
+        const IA b = eval(G_[e], G_coef_[e], face.span());
         if ((a.inf() > 0 && b.inf() > 0) || (a.sup() < 0 && b.sup() < 0)) return true;
       }
     }

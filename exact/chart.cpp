@@ -76,6 +76,85 @@ double max_abs(std::span<const double> v) {
   return r;
 }
 
+// The approximate centre h0 and predicted spread r of enclose() (see chart.hpp), in ordinary
+// floating point (it only chooses H). False when no approximate point of M over U's centre is
+// found. MaxK, MaxM bound k and m for Eigen's storage (Eigen::Dynamic: unbounded, on the heap).
+template <int MaxK, int MaxM>
+bool guess_slab(const ChartEnclosure::Impl& S, const Box& U, std::span<const double> h_hint, std::vector<double>& h0,
+                std::vector<double>& r) {
+  using MatKK = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxK, MaxK>;
+  using MatKM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxK, MaxM>;
+  using VecK = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxK, 1>;
+  const int m = S.m, k = S.k;
+  double zbuf[16];
+  std::vector<double> zvec;
+  if (m + k > 16) zvec.resize(m + k);
+  const std::span<double> z(m + k > 16 ? zvec.data() : zbuf, m + k);
+  double rad_u = 0;
+  NearestRounding nearest;
+  for (int a = 0; a < m; ++a) rad_u = std::max(rad_u, 0.5 * U[a].width());
+  MatKK Jh(k, k);
+  MatKM Ju(k, m);
+  VecK g(k);
+  // G and J_h at (z_u, h) in double (with J_u too when `with_u`); false on overflow. The Newton
+  // steps need J_u only at the final iterate (it only feeds the slope estimate).
+  auto linearise = [&](const double* h, bool with_u) {
+    for (int i = 0; i < k; ++i) z[m + i] = h[i];
+    const std::span<const double> zc(z.data(), z.size());
+    for (int i = 0; i < k; ++i) {
+      g(i) = S.g[i](zc);
+      for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j](zc);
+      if (with_u)
+        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a](zc);
+    }
+    return g.allFinite() && Jh.allFinite() && (!with_u || Ju.allFinite());
+  };
+  // Newton for G(z_u, .) = 0 from h; false when it breaks down.
+  Eigen::FullPivLU<MatKK> lu(k, k);
+  auto newton = [&](double* h) {
+    for (int it = 0; it < S.options.newton_steps; ++it) {
+      if (!linearise(h, false)) return false;
+      lu.compute(Jh);
+      if (!lu.isInvertible()) return false;
+      const VecK step = lu.solve(g);
+      double size = 0, scale = 0;
+      for (int i = 0; i < k; ++i) {
+        h[i] -= step(i);
+        size = std::max(size, std::abs(step(i)));
+        scale = std::max(scale, std::abs(h[i]));
+      }
+      if (!std::isfinite(size)) return false;
+      if (size <= 0x1.0p-50 * (scale + rad_u)) break;
+    }
+    return linearise(h, true);
+  };
+  // The centre u0 of U.
+  for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
+  if (!h_hint.empty()) h0.assign(h_hint.begin(), h_hint.end());
+  if (!newton(h0.data())) return false;  // no approximate point of M over the centre
+  lu.compute(Jh);
+  if (!lu.isInvertible()) return false;
+  // Predicted spread of h over U: linear (|dh/du| rad U, dh/du = -J_h^{-1} J_u at (u0, h0)) ...
+  const MatKM slope = lu.solve(Ju);
+  for (int i = 0; i < k; ++i)
+    for (int a = 0; a < m; ++a) r[i] += std::abs(slope(i, a)) * 0.5 * U[a].width();
+  // ... and, for the curvature, the Newton solutions at the 2^m corners of U (from h0).
+  std::vector<double> hc(k);
+  for (int corner = 0; corner < (1 << m); ++corner) {
+    for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
+    std::copy(h0.begin(), h0.end(), hc.begin());
+    if (!newton(hc.data())) continue;
+    for (int i = 0; i < k; ++i) r[i] = std::max(r[i], std::abs(hc[i] - h0[i]));
+  }
+  double floor_scale = max_abs(h0) + rad_u;
+  if (floor_scale == 0) floor_scale = max_abs(S.p);
+  for (int i = 0; i < k; ++i) {
+    r[i] = S.options.safety * r[i] + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
+    if (!std::isfinite(r[i])) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
@@ -195,66 +274,11 @@ ChartResult ChartEnclosure::enclose(const Box& U, std::span<const double> h_hint
     throw std::invalid_argument("chart: h hint has the wrong dimension");
 
   ChartResult out;
-  // Ordinary floating point from here to the Krawczyk test: it only chooses H.
-  std::vector<double> z(m + k), h0(k, 0.0), r(k, 0.0);
-  double rad_u = 0;
-  {
-    NearestRounding nearest;
-    for (int a = 0; a < m; ++a) rad_u = std::max(rad_u, 0.5 * U[a].width());
-    Eigen::MatrixXd Jh(k, k), Ju(k, m);
-    Eigen::VectorXd g(k);
-    // G, J_h, J_u at (z_u, h) in double; false on overflow.
-    auto linearise = [&](const std::vector<double>& h) {
-      for (int i = 0; i < k; ++i) z[m + i] = h[i];
-      for (int i = 0; i < k; ++i) {
-        g(i) = S.g[i](z);
-        for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j](z);
-        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a](z);
-      }
-      return g.allFinite() && Jh.allFinite() && Ju.allFinite();
-    };
-    // Newton for G(z_u, .) = 0 from h; false when it breaks down.
-    auto newton = [&](std::vector<double>& h) {
-      for (int it = 0; it < S.options.newton_steps; ++it) {
-        if (!linearise(h)) return false;
-        Eigen::FullPivLU<Eigen::MatrixXd> lu(Jh);
-        if (!lu.isInvertible()) return false;
-        const Eigen::VectorXd step = lu.solve(g);
-        double size = 0, scale = 0;
-        for (int i = 0; i < k; ++i) {
-          h[i] -= step(i);
-          size = std::max(size, std::abs(step(i)));
-          scale = std::max(scale, std::abs(h[i]));
-        }
-        if (!std::isfinite(size)) return false;
-        if (size <= 0x1.0p-50 * (scale + rad_u)) break;
-      }
-      return linearise(h);
-    };
-    // The centre u0 of U.
-    for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
-    if (!h_hint.empty()) h0.assign(h_hint.begin(), h_hint.end());
-    if (!newton(h0)) return out;  // no approximate point of M over the centre
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(Jh);
-    if (!lu.isInvertible()) return out;
-    // Predicted spread of h over U: linear (|dh/du| rad U, dh/du = -J_h^{-1} J_u at (u0, h0)) ...
-    const Eigen::MatrixXd slope = lu.solve(Ju);
-    for (int i = 0; i < k; ++i)
-      for (int a = 0; a < m; ++a) r[i] += std::abs(slope(i, a)) * 0.5 * U[a].width();
-    // ... and, for the curvature, the Newton solutions at the 2^m corners of U (from h0).
-    for (int corner = 0; corner < (1 << m); ++corner) {
-      for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
-      std::vector<double> hc = h0;
-      if (!newton(hc)) continue;
-      for (int i = 0; i < k; ++i) r[i] = std::max(r[i], std::abs(hc[i] - h0[i]));
-    }
-    double floor_scale = max_abs(h0) + rad_u;
-    if (floor_scale == 0) floor_scale = max_abs(S.p);
-    for (int i = 0; i < k; ++i) {
-      r[i] = S.options.safety * r[i] + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
-      if (!std::isfinite(r[i])) return out;
-    }
-  }
+  std::vector<double> h0(k, 0.0), r(k, 0.0);
+  // Small k and m (the usual case): matrices with fixed maximal storage (no heap); the same
+  // Eigen algorithms, so the same doubles.
+  const bool guessed = k <= 4 && m <= 4 ? guess_slab<4, 4>(S, U, h_hint, h0, r) : guess_slab<Eigen::Dynamic, Eigen::Dynamic>(S, U, h_hint, h0, r);
+  if (!guessed) return out;
   for (int attempt = 0; attempt < S.options.attempts; ++attempt) {
     Box H(k);
     {

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -96,6 +97,29 @@ std::string_view to_string(RootStatus status) {
 
 namespace {
 
+// A buffer of n values, on the stack when n <= Cap (the usual small systems), else on the heap.
+template <class T, std::size_t Cap>
+class Scratch {
+ public:
+  explicit Scratch(std::size_t n) : n_(n) {
+    if (n > Cap) heap_.resize(n);
+    data_ = n > Cap ? heap_.data() : local_.data();
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  T* begin() { return data_; }
+  T* end() { return data_ + n_; }
+  std::span<const T> span() const { return {data_, n_}; }
+
+ private:
+  std::size_t n_;
+  std::array<T, Cap> local_{};
+  std::vector<T> heap_;
+  T* data_;
+};
+
 // One Krawczyk operator evaluation K(U, X) (U: the parameter box, empty for a square system).
 // Returns false when it cannot be evaluated (overflow, singular midpoint Jacobian); then nothing
 // is known.
@@ -106,11 +130,15 @@ namespace {
 // +inf); gradual underflow is rounded in the same direction (IEEE directed rounding; the build
 // uses no flush-to-zero). A non-finite bound ends the evaluation (return false), so every box
 // that leaves this function has finite bounds that enclose what they claim.
-bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
+template <int MaxN>
+bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
   const int n = S.n, m = S.m;
-  std::vector<double> y(n), u0(m);
-  std::vector<IA> xs(m + n), ys(m + n), fy(n), jx(static_cast<std::size_t>(n) * n);
-  Eigen::MatrixXd Jmid(n, n), Y(n, n);
+  Scratch<double, 8> y(n), u0(m);
+  Scratch<IA, 16> xs(m + n), ys(m + n), zs(m > 0 ? m + n : 0);
+  Scratch<IA, 8> fy(n);
+  Scratch<IA, 64> jx(static_cast<std::size_t>(n) * n);
+  Mat Jmid(n, n), Y(n, n);
   // Midpoints, clamped into X and U whatever the rounding mode (any point of X works as the
   // centre; the centred form below needs only u0 in U).
   for (int i = 0; i < n; ++i) y[i] = std::clamp(X[i].lo + 0.5 * (X[i].hi - X[i].lo), X[i].lo, X[i].hi);
@@ -125,7 +153,7 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
     }
     // G(U, y): plain interval evaluation ...
     for (int i = 0; i < n; ++i) {
-      fy[i] = evaluate(S.f[i], S.f_coef[i], std::span<const IA>(ys));
+      fy[i] = evaluate(S.f[i], S.f_coef[i], ys.span());
       ok = ok && finite(fy[i]);
     }
     // ... intersected with the centred (mean-value) form G(u0, y) + J_u(U, y) (U - u0): for each
@@ -133,12 +161,12 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
     // [u0, u], inside the convex box U, so both forms enclose G_i(u, y) and so does their
     // intersection (never empty in exact terms; an empty one would mean a bug, and is refused).
     if (m > 0 && ok) {
-      std::vector<IA> zs = ys;
+      std::copy(ys.begin(), ys.end(), zs.begin());
       for (int a = 0; a < m; ++a) zs[a] = IA(u0[a]);
       for (int i = 0; i < n; ++i) {
-        IA c = evaluate(S.f[i], S.f_coef[i], std::span<const IA>(zs));
+        IA c = evaluate(S.f[i], S.f_coef[i], zs.span());
         for (int a = 0; a < m; ++a)
-          c = c + evaluate(S.du[i * m + a], S.du_coef[i * m + a], std::span<const IA>(ys)) * (ys[a] - IA(u0[a]));
+          c = c + evaluate(S.du[i * m + a], S.du_coef[i * m + a], ys.span()) * (ys[a] - IA(u0[a]));
         if (!finite(c)) continue;  // the plain form alone is still an enclosure
         const double lo = std::max(c.inf(), fy[i].inf()), hi = std::min(c.sup(), fy[i].sup());
         if (!(lo <= hi)) return false;
@@ -147,7 +175,7 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
     }
     // J_x(U, X): encloses J_x(u, x) for every u in U and x in X.
     for (int i = 0; i < n * n; ++i) {
-      jx[i] = evaluate(S.df[i], S.df_coef[i], std::span<const IA>(xs));
+      jx[i] = evaluate(S.df[i], S.df_coef[i], xs.span());
       ok = ok && finite(jx[i]);
     }
   }
@@ -158,7 +186,7 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
     NearestRounding nearest;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(Jmid);
+    Eigen::FullPivLU<Mat> lu(Jmid);
     if (!lu.isInvertible()) return false;
     Y = lu.inverse();
     if (!Y.allFinite()) return false;
@@ -178,6 +206,13 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
     K[i] = detail::from_ia(acc);
   }
   return true;
+}
+
+bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
+  // Small systems (the chart's k, the restricted vertex's N): Eigen storage of bounded size, no
+  // heap; the same algorithms, so the same preconditioner.
+  if (S.n <= 4) return krawczyk_operator_impl<4>(S, U, X, K);
+  return krawczyk_operator_impl<Eigen::Dynamic>(S, U, X, K);
 }
 
 bool strictly_inside(const Box& K, const Box& X) {
@@ -226,7 +261,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, con
   Attempt a;
   a.box = input;
   Box& X = a.box;
-  Box K;
+  Box K, next;
   // Phase A: contraction X <- K(X) n X. Every root of F in X lies in K(X).
   for (int it = 0; it < options.max_iterations; ++it) {
     a.iterations = it + 1;
@@ -242,7 +277,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, con
       a.region = X;  // exactly one root in X (Krawczyk), and it lies in K
       a.root = K;
     }
-    Box next(n);
+    next.resize(n);
     for (int i = 0; i < n; ++i) next[i] = {std::max(K[i].lo, X[i].lo), std::min(K[i].hi, X[i].hi)};
     double before = 0, after = 0;
     for (int i = 0; i < n; ++i) {

@@ -583,17 +583,23 @@ mpq_class Polynomial::evaluate(std::span<const mpq_class> x) const {
 DoublePolynomial::DoublePolynomial(const Polynomial& p) : num_vars_(p.num_variables()) {
   for (const auto& t : p.terms()) {
     coefficients_.push_back(t.coefficient.get_d());
-    exponents_.insert(exponents_.end(), t.monomial.exponents.begin(), t.monomial.exponents.end());
+    for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v)
+      if (t.monomial.exponents[v] > 0) factors_.push_back({static_cast<std::uint32_t>(v), t.monomial.exponents[v]});
+    ends_.push_back(static_cast<std::uint32_t>(factors_.size()));
   }
 }
 
 double DoublePolynomial::operator()(std::span<const double> x) const {
+  // t = c * x_v * ... * x_v (e_v times, v increasing), summed in term order: skipping the zero
+  // exponents changes none of the products.
   double sum = 0;
-  const std::uint32_t* e = exponents_.data();
-  for (double c : coefficients_) {
-    double t = c;
-    for (int v = 0; v < num_vars_; ++v, ++e)
-      for (std::uint32_t k = 0; k < *e; ++k) t *= x[v];
+  const Factor* f = factors_.data();
+  for (std::size_t i = 0; i < coefficients_.size(); ++i) {
+    double t = coefficients_[i];
+    for (const Factor* end = factors_.data() + ends_[i]; f != end; ++f) {
+      const double xv = x[f->var];
+      for (std::uint32_t k = 0; k < f->exponent; ++k) t *= xv;
+    }
     sum += t;
   }
   return sum;

@@ -153,7 +153,13 @@ class DoublePolynomial {
  private:
   int num_vars_ = 0;
   std::vector<double> coefficients_;
-  std::vector<std::uint32_t> exponents_;  // #terms by #vars, row-major
+  // The non-zero exponents only: term i owns factors_[ends_[i - 1] .. ends_[i]) (ends_[-1] = 0),
+  // each (variable, exponent) in increasing variable order (the same products as the dense loop).
+  struct Factor {
+    std::uint32_t var, exponent;
+  };
+  std::vector<Factor> factors_;
+  std::vector<std::uint32_t> ends_;
 };
 
 }  // namespace delcert::exact
