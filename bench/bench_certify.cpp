@@ -254,12 +254,14 @@ int main(int argc, char** argv) {
       rd["krawczyk_failures"] = d.value("krawczyk_failures", nlohmann::json());
       if (cov->contains("margin")) rd["covering_margin"] = (*cov)["margin"];
     }
-    nlohmann::json verdicts;
+    nlohmann::json verdicts, summaries;
     for (const char* name : {"covering", "restricted_delaunay", "tangential_equals_restricted"}) {
       const auto* e = find_check(c, name);
       verdicts[name] = e ? (*e)["verdict"] : nlohmann::json("absent");
+      if (e && (*e)["verdict"] != "CERTIFIED") summaries[name] = e->value("summary", "");
     }
     rd["verdicts"] = verdicts;
+    if (!summaries.empty()) rd["summaries"] = summaries;  // why a check is not CERTIFIED
     r["restricted"] = rd;
     out["results"].push_back(r);
   }
