@@ -230,6 +230,7 @@ int main(int argc, char** argv) {
     int m = in.m;
     if (m == 0) m = c["inputs"]["manifold"].value("intrinsic_dimension", 0);
     const std::size_t count = c["inputs"]["points"].value("count", std::size_t(0));
+    r["points"] = count;  // the certifier's count (the header guess above does not read OFF)
     nlohmann::json rd;
     rd["m"] = m;
     rd["wall_s"] = median(rw);
