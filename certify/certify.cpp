@@ -658,6 +658,27 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
       rd.add_witness(vertex_witness(s));
     }
+    // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point
+    // of M equidistant from m + 2 points never resolves), and when it is pure every lower one is a
+    // face of an m-simplex.
+    for (const auto& s0 : given->simplices) {
+      Simplex s = s0;
+      std::sort(s.begin(), s.end());
+      if (static_cast<int>(s.size()) == m + 1) continue;
+      bool face = false;
+      for (const auto& t : tops)
+        if (std::includes(t.begin(), t.end(), s.begin(), s.end())) {
+          face = true;
+          break;
+        }
+      if (face && static_cast<int>(s.size()) < m + 1) continue;
+      ++extra;
+      if (!R.covering_certified || unresolved) continue;  // not proven absent
+      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      rd.add_witness({{"kind", static_cast<int>(s.size()) > m + 1 ? "wrong_dimension" : "not_a_face_of_an_m_simplex"},
+                      {"simplex", s},
+                      {"detail", "Del_RM(P) is known completely, has no simplex of dimension above m, and is pure"}});
+    }
     for (const auto& s : tops) {
       if (found.count(s)) continue;
       ++extra;

@@ -432,7 +432,9 @@ class CellAnalysis {
     if (n == m_ + 1 && chart_slab) resolved = krawczyk_vertex(w, H);
     double widest = 0;
     for (const auto& i : w.U) widest = std::max(widest, i.width());
-    const double bound = exact::sqrt(d2).sup();
+    // A NaN enclosure (an overflow inside an operation) bounds nothing: +inf, never skipped.
+    const double raw_bound = exact::sqrt(d2).sup();
+    const double bound = std::isnan(raw_bound) ? INFINITY : raw_bound;
     const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_ || w.depth >= opt_.max_depth ||
                       (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
     // First pass: every resolved box with another candidate waits for the second pass, where the

@@ -66,7 +66,7 @@ namespace delcert::certify {
 struct RestrictedCellOptions {
   double graph_radius = 0;      // r > 0: the cell is analysed in the open ball B(p, r)
   int max_depth = 24;           // subdivision depth limit (each level halves every side of U)
-  long max_boxes = 50000;       // boxes visited per point; beyond it the rest is undecided
+  long max_boxes = 20000;       // boxes visited per point; beyond it the rest is undecided
   // Kept boxes with more candidates than p are split further (second pass) while their widest
   // u-side exceeds this fraction of rho_u and their bound exceeds the distance from p to the
   // farthest vertex found (sharpens covering_bound near the cell's corners; work only).

@@ -154,6 +154,12 @@ TEST(RestrictedChecks, MutantsOfARestrictedMeshAreNeverCertified) {
   EXPECT_NE(run_mutant(added).overall(), Verdict::certified);
   EXPECT_EQ(entry(run_mutant(added), CheckId::restricted_delaunay).verdict, Verdict::refuted);
 
+  io::Complex edge = A.complex;  // an isolated edge between the two poles: Del_RM is pure
+  edge.simplices.push_back({0, 59});
+  const Certificate e = run_mutant(edge);
+  ASSERT_EQ(entry(e, CheckId::restricted_delaunay).verdict, Verdict::refuted);
+  EXPECT_EQ(entry(e, CheckId::restricted_delaunay).witnesses[0]["kind"], "not_a_face_of_an_m_simplex");
+
   io::Complex replaced = A.complex;
   replaced.simplices[3] = {replaced.simplices[3][0], replaced.simplices[3][1], (replaced.simplices[3][2] + 17) % 60};
   EXPECT_EQ(entry(run_mutant(replaced), CheckId::restricted_delaunay).verdict, Verdict::refuted);

@@ -175,13 +175,17 @@ TEST(RestrictedCell, CubeOnItsSphereIsNeverDecided) {
     EXPECT_FALSE(R.unresolved_faces.empty()) << R.point;  // its restricted Voronoi edges have no certified vertex
     EXPECT_TRUE(R.vertices.empty()) << R.point;  // no triangle is ever claimed
     ASSERT_FALSE(R.undecided.empty()) << R.point;
+    int ties = 0;
     for (const auto& u : R.undecided) {
+      if (u.reason == "box budget exhausted") continue;  // the purity refinement along the edges
+      ++ties;
       EXPECT_EQ(u.candidates.size(), 4u);
       // Located at a face centre (+-sqrt 3 on one axis).
       double big = 0;
       for (double x : u.location) big = std::max(big, std::abs(x));
       EXPECT_NEAR(big, std::sqrt(3.0), 1e-2);
     }
+    EXPECT_GT(ties, 0) << R.point;  // the 4-fold ties at the face centres are found, never resolved
   }
 }
 

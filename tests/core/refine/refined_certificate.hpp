@@ -52,9 +52,10 @@ inline void expect_refined_certificate(const nlohmann::json& certificate, const 
       const std::vector<int> s = w.at("simplex");
       long double nearest_hi = 0;
       for (int v : s) nearest_hi = std::max(nearest_hi, box_distance2(box, P.point(v)).second);
-      for (std::size_t q = 0; q < P.size(); ++q)
-        if (!std::count(s.begin(), s.end(), static_cast<int>(q)))
-          EXPECT_GT(box_distance2(box, P.point(q)).first, nearest_hi * (1 + 1e-9L)) << "point " << q << " in " << w;
+      for (std::size_t q = 0; q < P.size(); ++q) {
+        if (std::count(s.begin(), s.end(), static_cast<int>(q))) continue;
+        EXPECT_GT(box_distance2(box, P.point(q)).first, nearest_hi * (1 + 1e-9L)) << "point " << q << " in " << w;
+      }
       ++rechecked;
     }
     std::printf("Del_TM != Del_RM: %s (%d vertex witnesses re-checked)\n",
