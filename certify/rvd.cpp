@@ -204,6 +204,7 @@ class CellAnalysis {
   // first such C.
   bool faces_known(const std::vector<int>& S, std::vector<int>& face) const {
     const int n = static_cast<int>(S.size());
+    if (n > m_) return false;  // only resolved boxes are asked (n <= m); 1 << n stays small
     for (int mask = 1; mask < (1 << n); ++mask) {
       if (__builtin_popcount(mask) + 1 > m_) continue;
       std::vector<int> C{p_};
@@ -446,7 +447,7 @@ class CellAnalysis {
       return;
     }
     std::vector<int> face;
-    const bool faces_ok = n == 1 || faces_known(w.S, face);
+    const bool faces_ok = !resolved || n == 1 || faces_known(w.S, face);  // only read for resolved boxes
     const bool purity_floor = widest <= opt_.purity_width * rho_u_;
     if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   options.manifold = argc > 1 ? argv[1] : "builtin:sphere-2";
   options.points = argc > 2 ? argv[2] : "fixtures/points/octahedron.off";
   options.complex = argc > 3 ? argv[3] : "fixtures/certify/octahedron.complex";
-  options.claims = argc > 4 ? argv[4] : "";  // optional: claims.json (eps, sparsity, gamma0, ...)
+  options.claims = argc > 4 ? argv[4] : "";  // optional: claims.json (star_radius, covering, sparsity, ...)
 
   // Every enclosure relies on directed rounding; check once that it works in this build.
   if (const std::string why = exact::directed_rounding_failure(); !why.empty()) {
