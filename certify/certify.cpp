@@ -548,11 +548,17 @@ json location_json(const std::vector<double>& x) {
   return j;
 }
 
-// What checks 11-13 say when Del_RM was not computed (--skip-restricted).
-CheckEntry not_computed(CheckId id) {
+// What checks 11-13 say when Del_RM was not computed: with --skip-restricted (`why` empty), a
+// REPORT; where it cannot be computed, UNDECIDED with the reason.
+CheckEntry not_computed(CheckId id, const std::string& why = "") {
   CheckEntry e(id);
-  e.verdict = Verdict::report;
-  e.summary = "not computed (--skip-restricted): this certificate says nothing about Del_RM(P) or the covering radius";
+  if (why.empty()) {
+    e.verdict = Verdict::report;
+    e.summary = "not computed (--skip-restricted): this certificate says nothing about Del_RM(P) or the covering radius";
+  } else {
+    e.undecide(why);
+    e.summary = "not computed: " + why;
+  }
   return e;
 }
 
@@ -838,17 +844,11 @@ Certificate run_certify(const CertifyOptions& o) {
 
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal;
-  if (o.skip_restricted) {
-    covering = not_computed(CheckId::covering), restricted = not_computed(CheckId::restricted_delaunay);
-    equal = not_computed(CheckId::tangential_equals_restricted);
-  } else if (m > 3) {
-    for (auto* e : {&covering, &restricted, &equal}) {
-      *e = not_computed(e == &covering ? CheckId::covering : e == &restricted ? CheckId::restricted_delaunay
-                                                                              : CheckId::tangential_equals_restricted);
-      (*e)->verdict = Verdict::certified;
-      (*e)->undecide("the certified restricted Voronoi diagram is built for m <= 3 (here m = " + std::to_string(m) + ")");
-      (*e)->summary = "not computed: " + (*e)->details["reason"].get<std::string>();
-    }
+  if (o.skip_restricted || m > 3) {
+    const std::string why = o.skip_restricted ? "" : "the certified restricted Voronoi diagram is built for m <= 3 (here m = " +
+                                                         std::to_string(m) + ")";
+    covering = not_computed(CheckId::covering, why), restricted = not_computed(CheckId::restricted_delaunay, why);
+    equal = not_computed(CheckId::tangential_equals_restricted, why);
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;

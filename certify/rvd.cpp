@@ -3,15 +3,16 @@
 #include <gmpxx.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "exact/chart.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
 #include "exact/number_types.hpp"
+#include "exact/small_buffer.hpp"
 
 namespace delcert::certify {
 
@@ -19,31 +20,10 @@ namespace {
 
 using exact::Box;
 using exact::Interval;
+using exact::SmallBuffer;
 using IA = exact::IntervalNumber;
 
 IA ia(const Interval& i) { return exact::to_interval_number(i); }
-
-// A buffer of n values, on the stack when n <= Cap (the usual small dimensions), else on the heap.
-template <class T, std::size_t Cap>
-class Scratch {
- public:
-  explicit Scratch(std::size_t n) : n_(n) {
-    if (n > Cap) heap_.resize(n);
-    data_ = n > Cap ? heap_.data() : local_.data();
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  T& operator[](std::size_t i) { return data_[i]; }
-  T* begin() { return data_; }
-  T* end() { return data_ + n_; }
-  std::span<const T> span() const { return {data_, n_}; }
-
- private:
-  std::size_t n_;
-  std::array<T, Cap> local_{};
-  std::vector<T> heap_;
-  T* data_;
-};
 
 // A certified lower bound (> 0) of the smallest eigenvalue of the exact Gram matrix of the
 // columns of A (rows x cols): the larger of Gershgorin's bound and det / trace^(cols - 1) (the
@@ -269,7 +249,7 @@ class CellAnalysis {
   // between values on the faces). The face test sees the sign near a slab edge that the plain
   // enclosure of a wide box loses. Under upward rounding.
   bool free_of_M(const Box& U, const Box& H) const {
-    Scratch<IA, 16> z(m_ + k_), face(m_ + k_);
+    SmallBuffer<IA, 16> z(m_ + k_), face(m_ + k_);
     for (int a = 0; a < m_; ++a) z[a] = ia(U[a]);
     for (int l = 0; l < k_; ++l) z[m_ + l] = ia(H[l]);
     auto eval = [&](const exact::Polynomial& P, const std::vector<Interval>& coef, std::span<const IA> at) {
@@ -409,7 +389,7 @@ class CellAnalysis {
     // The parent's slab and candidates move aside: the second pass revisits the box with them.
     Box H_in = std::move(w.H);
     w.H = H;
-    std::vector<int> S_in = w.S;
+    std::vector<int> S_in;
     IA d2;
     {
       if (dist2(w.U, H).inf() >= r2_.sup()) {
@@ -425,7 +405,7 @@ class CellAnalysis {
         }
         if (!(s.inf() > 0)) kept.push_back(i);
       }
-      w.S = std::move(kept);
+      S_in = std::exchange(w.S, std::move(kept));
       d2 = dist2(w.U, H);
     }
     const int n = static_cast<int>(w.S.size()) + 1;

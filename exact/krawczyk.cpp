@@ -3,7 +3,6 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -12,6 +11,7 @@
 #include "exact/detail/cgal_number_types.hpp"
 #include "exact/detail/interval_polynomial.hpp"
 #include "exact/number_types.hpp"
+#include "exact/small_buffer.hpp"
 
 namespace delcert::exact {
 
@@ -97,29 +97,6 @@ std::string_view to_string(RootStatus status) {
 
 namespace {
 
-// A buffer of n values, on the stack when n <= Cap (the usual small systems), else on the heap.
-template <class T, std::size_t Cap>
-class Scratch {
- public:
-  explicit Scratch(std::size_t n) : n_(n) {
-    if (n > Cap) heap_.resize(n);
-    data_ = n > Cap ? heap_.data() : local_.data();
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  T& operator[](std::size_t i) { return data_[i]; }
-  const T& operator[](std::size_t i) const { return data_[i]; }
-  T* begin() { return data_; }
-  T* end() { return data_ + n_; }
-  std::span<const T> span() const { return {data_, n_}; }
-
- private:
-  std::size_t n_;
-  std::array<T, Cap> local_{};
-  std::vector<T> heap_;
-  T* data_;
-};
-
 // One Krawczyk operator evaluation K(U, X) (U: the parameter box, empty for a square system).
 // Returns false when it cannot be evaluated (overflow, singular midpoint Jacobian); then nothing
 // is known.
@@ -134,10 +111,10 @@ template <int MaxN>
 bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
   using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
   const int n = S.n, m = S.m;
-  Scratch<double, 8> y(n), u0(m);
-  Scratch<IA, 16> xs(m + n), ys(m + n), zs(m > 0 ? m + n : 0);
-  Scratch<IA, 8> fy(n);
-  Scratch<IA, 64> jx(static_cast<std::size_t>(n) * n);
+  SmallBuffer<double, 8> y(n), u0(m);
+  SmallBuffer<IA, 16> xs(m + n), ys(m + n), zs(m > 0 ? m + n : 0);
+  SmallBuffer<IA, 8> fy(n);
+  SmallBuffer<IA, 64> jx(static_cast<std::size_t>(n) * n);
   Mat Jmid(n, n), Y(n, n);
   // Midpoints, clamped into X and U whatever the rounding mode (any point of X works as the
   // centre; the centred form below needs only u0 in U).
