@@ -562,6 +562,21 @@ CheckEntry not_computed(CheckId id, const std::string& why = "") {
   return e;
 }
 
+// The checks that need T_p M at every point (Del_TM and what is measured on it), when some point
+// is off M: accepted only for a complex claimed to be restricted Delaunay (check 1), they are not
+// computed. REPORT (Del_TM is not what the input claims), UNDECIDED where the claims file makes a
+// claim the check would have decided.
+CheckEntry tangent_space_undefined(CheckId id, int point, bool claimed) {
+  CheckEntry e(id);
+  const std::string why = "point " + std::to_string(point) +
+                          " is off M (residual above the spec's residual_tolerance), where T_p M is not defined, "
+                          "so Del_TM(P) is not computed";
+  if (claimed) e.undecide(why);
+  else e.verdict = Verdict::report;
+  e.summary = "not computed: " + why;
+  return e;
+}
+
 // Check 11: the certified covering radius (P is an eps-sample of M), against the covering claim.
 CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_class>& claim,
                           const io::ManifoldSpec& spec) {
@@ -788,14 +803,6 @@ Certificate run_certify(const CertifyOptions& o) {
   for (auto& c : ctx) c.force_exact = o.force_exact;
   ctx_sparsity.force_exact = ctx_consistency.force_exact = o.force_exact;
 
-  Stopwatch watch;
-  C.checks.push_back(check_input_sanity(spec, P, in.point_lines, o.points, threads));
-  watch.record(C, "input_sanity");
-  const exact::ImplicitSystem system(spec.equations, N);
-  const detail::PointGrid grid(P, m);
-  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
-  watch.record(C, "sparsity");
-
   // The kind of the given complex: tangential (checks 3 and 4 compare it with Del_TM) or
   // restricted (check 12 compares it with Del_RM; the stars are computed as in audit mode).
   const bool restricted_kind =
@@ -805,19 +812,45 @@ Certificate run_certify(const CertifyOptions& o) {
                                        "default for OFF), which needs checks 11-13: drop --skip-restricted or pass "
                                        "--kind tangential");
   C.parameters["kind"] = !in.given ? "audit" : restricted_kind ? "restricted" : "tangential";
+
+  Stopwatch watch;
+  SanityResult sanity = check_input_sanity(spec, P, in.point_lines, o.points, restricted_kind, threads);
+  watch.record(C, "input_sanity");
+  // Points off M (accepted only for a restricted claim) have no tangent space: no Del_TM.
+  const bool on_M = sanity.off_manifold.empty();
+  const exact::ImplicitSystem system(spec.equations, N);
+  const detail::PointGrid grid(P, m);
+  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
+  watch.record(C, "sparsity");
+
   const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.star_radius};
-  const Stars stars = analyse_stars(restricted_kind ? std::nullopt : in.given, S, threads, ctx);
-  watch.record(C, "stars");
-  CheckEntry stars_entry = check_stars(stars, m);
-  CheckEntry consistency = check_consistency(stars, S, ctx_consistency);
-  ProtectionResult protection = check_power_protection(stars, claims.power_protection);
-  RadiusResult radius = check_star_radius(stars, claims.star_radius);
-  watch.record(C, "assemble_checks_3_4_6_10");
+  std::optional<Stars> stars;  // Del_TM(P): needs T_p M at every point
+  std::optional<CheckEntry> stars_entry, consistency, protection_entry, radius_entry, secure, theorem;
+  std::optional<ProtectionResult> protection;
+  std::optional<RadiusResult> radius;
+  if (on_M) {
+    stars = analyse_stars(restricted_kind ? std::nullopt : in.given, S, threads, ctx);
+    watch.record(C, "stars");
+    stars_entry = check_stars(*stars, m);
+    consistency = check_consistency(*stars, S, ctx_consistency);
+    protection = check_power_protection(*stars, claims.power_protection);
+    radius = check_star_radius(*stars, claims.star_radius);
+    protection_entry = protection->entry, radius_entry = radius->entry;
+    watch.record(C, "assemble_checks_3_4_6_10");
+  } else {
+    const int first = sanity.off_manifold[0];
+    stars_entry = tangent_space_undefined(CheckId::stars, first, false);
+    consistency = tangent_space_undefined(CheckId::consistency, first, false);
+    protection_entry = tangent_space_undefined(CheckId::power_protection, first, claims.power_protection.has_value());
+    radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value());
+    secure = tangent_space_undefined(CheckId::secure_simplices, first, false);
+    theorem = tangent_space_undefined(CheckId::theorem, first, false);
+  }
 
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by
   // check 3 (wrong dimension, with the simplex as witness); their 2^n faces are never enumerated
   // (a 32-vertex simplex would hang).
-  const io::Complex& K = restricted_kind ? *in.given : stars.complex;  // what checks 5 and 8 look at
+  const io::Complex& K = restricted_kind ? *in.given : stars->complex;  // what checks 5 and 8 look at
   std::vector<Simplex> lattice_simplices;
   for (const auto& s : K.simplices)
     if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
@@ -829,18 +862,21 @@ Certificate run_certify(const CertifyOptions& o) {
   CheckEntry topology = check_topology(K, m, lattice, spec.expected);
   watch.record(C, "topology");
 
-  // Checks 7 and 9: the paper's hypotheses, measured.
-  Measured meas;
-  meas.min_distance = sqrt_lower(sparsity.min_squared);
-  meas.min_thickness = thick.min_top.lo;
-  meas.min_margin = protection.cells ? protection.min_margin.lo : -INFINITY;
-  meas.max_radius_squared = radius.cells ? radius.max_r2.hi : INFINITY;
-  meas.eps = claims.star_radius && radius.entry.verdict == Verdict::certified ? std::optional<mpq_class>(*claims.star_radius)
-                                                                             : std::nullopt;
-  const TheoremParams tp = theorem_parameters(meas);
-  CheckEntry secure = check_secure_simplices(tp, S, stars.reports, threads, ctx);
-  CheckEntry theorem = theorem_report(tp, spec);
-  watch.record(C, "secure_and_theorem");
+  if (on_M) {
+    // Checks 7 and 9: the paper's hypotheses, measured.
+    Measured meas;
+    meas.min_distance = sqrt_lower(sparsity.min_squared);
+    meas.min_thickness = thick.min_top.lo;
+    meas.min_margin = protection->cells ? protection->min_margin.lo : -INFINITY;
+    meas.max_radius_squared = radius->cells ? radius->max_r2.hi : INFINITY;
+    meas.eps = claims.star_radius && radius->entry.verdict == Verdict::certified
+                   ? std::optional<mpq_class>(*claims.star_radius)
+                   : std::nullopt;
+    const TheoremParams tp = theorem_parameters(meas);
+    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx);
+    theorem = theorem_report(tp, spec);
+    watch.record(C, "secure_and_theorem");
+  }
 
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal;
@@ -855,22 +891,24 @@ Certificate run_certify(const CertifyOptions& o) {
     const RestrictedDelaunay R = compute_restricted_delaunay(system, P, grid, ro);
     covering = check_covering(R, claims.covering, spec);
     restricted = check_restricted(R, in.given, restricted_kind, m);
-    equal = check_tangential_equals_restricted(stars, R, !restricted_kind);
+    equal = on_M ? check_tangential_equals_restricted(*stars, R, !restricted_kind)
+                 : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);
   }
   watch.record(C, "restricted_delaunay");
 
   for (auto& c : ctx) C.filter.merge(c.stats);
   C.filter.merge(ctx_sparsity.stats);
   C.filter.merge(ctx_consistency.stats);
+  C.checks.push_back(std::move(sanity.entry));
   C.checks.push_back(std::move(sparsity.entry));
-  C.checks.push_back(std::move(stars_entry));
-  C.checks.push_back(std::move(consistency));
+  C.checks.push_back(std::move(*stars_entry));
+  C.checks.push_back(std::move(*consistency));
   C.checks.push_back(std::move(thick.entry));
-  C.checks.push_back(std::move(protection.entry));
-  C.checks.push_back(std::move(secure));
+  C.checks.push_back(std::move(*protection_entry));
+  C.checks.push_back(std::move(*secure));
   C.checks.push_back(std::move(topology));
-  C.checks.push_back(std::move(theorem));
-  C.checks.push_back(std::move(radius.entry));
+  C.checks.push_back(std::move(*theorem));
+  C.checks.push_back(std::move(*radius_entry));
   C.checks.push_back(std::move(*covering));
   C.checks.push_back(std::move(*restricted));
   C.checks.push_back(std::move(*equal));

@@ -64,8 +64,8 @@ exact::Interval sqrt_enclosure(const mpq_class& q) {
 
 }  // namespace
 
-CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
-                              const std::string& file, int threads) {
+SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
+                                const std::string& file, bool accept_off_manifold, int threads) {
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension, k = N - m;
   const std::size_t n = points.size();
   std::vector<std::vector<exact::Polynomial>> jac(k);
@@ -83,12 +83,14 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
     std::vector<mpq_class> x = exact::to_rational(points.point(idx));
     for (int i = 0; i < k; ++i) {
       mpq_class f = abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)));
-      if (f > spec.residual_tolerance)
+      if (f > spec.residual_tolerance && !accept_off_manifold)
         throw io::InputError(file, line_of(idx),
                              "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
                                  "(p)| is about " + num(f.get_d()) + " > residual_tolerance " +
                                  exact::rational_to_string(spec.residual_tolerance) +
-                                 " (exactly); project the point onto M or raise residual_tolerance in the spec");
+                                 " (exactly), and the tangential Delaunay complex needs T_p M; project the point onto "
+                                 "M, raise residual_tolerance in the spec, or, for a complex claimed to be restricted "
+                                 "Delaunay (a mesher's output), pass it with --complex and --kind restricted");
       if (f > worst[idx]) worst[idx] = f;
     }
     if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(x))) <= 0)
@@ -116,7 +118,10 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                                "too far from M; fix the spec or project the point onto M");
     distance[idx] = d.distance_upper;
   });
-  CheckEntry e(CheckId::input_sanity);
+  SanityResult R;
+  CheckEntry& e = R.entry;
+  for (std::size_t i = 0; i < n; ++i)
+    if (worst[i] > spec.residual_tolerance) R.off_manifold.push_back(static_cast<int>(i));
   std::size_t arg = 0;
   for (std::size_t i = 1; i < n; ++i)
     if (worst[i] > worst[arg]) arg = i;
@@ -128,6 +133,10 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
   e.summary = std::to_string(n) + " distinct points in R^" + std::to_string(N) + ", max |F_i(p)| <= " +
               num(exact::enclose(maxres).hi) + " (tolerance " + exact::rational_to_string(spec.residual_tolerance) +
               "), every point within " + num(maxdist) + " of M (certified), full-rank Jacobian there";
+  if (!R.off_manifold.empty())
+    e.summary += "; " + std::to_string(R.off_manifold.size()) + " point(s) off M beyond the tolerance (first: point " +
+                 std::to_string(R.off_manifold[0]) +
+                 "), accepted for the restricted Delaunay complex: checks that need T_p M are not computed";
   e.margin = {{"max_residual", {{"certified_upper_bound", num(exact::enclose(maxres).hi)},
                                 {"enclosure", enclosure_json(exact::enclose(maxres))}}},
               {"at_point", n ? json(arg) : json(nullptr)},
@@ -138,13 +147,15 @@ CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& 
                {"residual_tolerance", exact::rational_to_string(spec.residual_tolerance)},
                {"selector", spec.selector ? json(spec.selector_text) : json(nullptr)},
                {"jacobian_full_rank_everywhere", true},
+               {"off_manifold_points", R.off_manifold.size()},
+               {"first_off_manifold_point", R.off_manifold.empty() ? json(nullptr) : json(R.off_manifold[0])},
                {"distance_to_M",
                 "for each point p, an interval Krawczyk test on G(t) = F(p + A^T t) (A: k orthonormalised "
                 "normal directions, doubles taken exactly) proves a unique zero x* = p + A^T t* in a box, "
                 "x* on the selected component, and J_F of full rank N - m on a box around x*; "
                 "|p - x*| <= sup |A^T t| over the box, rounded upward"},
                {"distinct", "bit-identical and numerically equal points are refused by the reader (exit 2)"}};
-  return e;
+  return R;
 }
 
 SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGrid& grid, const mpq_class* claim,

@@ -25,12 +25,24 @@ namespace detail {
 class PointGrid;
 }  // namespace detail
 
+// Points off M. A point with |F_i(p)| > residual_tolerance is refused (io::InputError) unless
+// `accept_off_manifold`: the complex is claimed to be restricted Delaunay (a surface mesher's
+// vertices, found by bisection, lie only near M). Del_RM(P) and the covering radius are defined
+// for any P and need no tangent space at p; Del_TM(P) needs T_p M, which a point off M does not
+// have, so the caller leaves the tangential checks uncomputed (docs/certificate.md, "Points off
+// M"). Such points are listed in `off_manifold` and the entry reports their largest residual and
+// their certified distance to M; every other requirement below still holds for them.
+//
 // Throws io::InputError naming the points file and the point's line (lines[i], from
 // io::parse_points_file; no line for i >= lines.size()) for a point off M (beyond the
-// tolerance), on the wrong component, where the Jacobian is rank-deficient, or where no point of
-// M can be certified nearby (never a verdict: bad input, exit status 2).
-CheckEntry check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
-                              const std::string& points_file, int threads);
+// tolerance, unless accepted), on the wrong component, where the Jacobian is rank-deficient, or
+// where no point of M can be certified nearby (never a verdict: bad input, exit status 2).
+struct SanityResult {
+  CheckEntry entry{CheckId::input_sanity};
+  std::vector<int> off_manifold;  // sorted indices of the points with a residual above the tolerance
+};
+SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
+                                const std::string& points_file, bool accept_off_manifold, int threads);
 
 // Check 2: the exact minimum squared distance and the pair realising it (smallest indices among
 // ties), compared with the claimed sparsity (distance > claim) when given.

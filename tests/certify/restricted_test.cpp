@@ -11,6 +11,7 @@
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
 #include "io/points.hpp"
+#include "reference/restricted_delaunay_reference.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -244,6 +245,95 @@ TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
     EXPECT_LE(covering_lower(cov) / s, std::sqrt(2 - 2 / std::sqrt(3.0)) * (1 + 1e-12)) << k;
   }
   std::printf("%d of 5 scaled octahedra certified\n", certified);
+}
+
+// Issue 11, item 5: a surface mesher's vertices are found by bisection, so they lie only NEAR M.
+// Simulated here: each vertex is the 12th bisection midpoint of F(t d) = 0 on a ray t d (d a
+// Fibonacci direction, t in [1/2, 2]), so |t - 1| <= 3.7e-4 and no vertex is on the sphere (the
+// midpoints are dyadic, 1 is not reached). The mesh is Del_RM of those vertices as computed by
+// the independent reference (CGAL's 3D Delaunay + exact Sturm counting, tests only). The OFF file
+// is claimed restricted (the default for OFF): accepted, checks that need T_p M not computed,
+// Del_RM certified equal to it; a dropped triangle is refuted with its restricted Voronoi vertex;
+// the same points without a restricted claim, or with a claim about Del_TM, are not certified.
+TEST(RestrictedChecks, MeshVerticesOffTheSurfaceAreAcceptedForARestrictedClaim) {
+  TempDir dir("restricted-off-M");
+  const io::PointSet D = fibonacci_sphere(150);
+  io::PointSet P;
+  P.dimension = 3;
+  for (std::size_t i = 0; i < D.size(); ++i) {
+    double lo = 0.5, hi = 2, t = 0;
+    for (int it = 0; it < 12; ++it) {
+      t = (lo + hi) / 2;
+      (t * t > 1 ? hi : lo) = t;  // F(t d) = t^2 - 1 (|d| ~ 1): the sign picks the half
+    }
+    const std::vector<double> x{t * D.point(i)[0], t * D.point(i)[1], t * D.point(i)[2]};
+    P.push_back(x);
+  }
+  const io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
+  const reference::RestrictedDelaunayReference ref =
+      reference::restricted_delaunay_reference(P, reference::surface_equation(spec));
+  ASSERT_TRUE(ref.decided());
+  io::Complex mesh;
+  mesh.num_vertices = P.size();
+  for (const auto& t : ref.triangles())
+    mesh.simplices.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  ASSERT_EQ(mesh.simplices.size(), 2 * 150u - 4);
+  const std::string off = dir.file("mesh.off");
+  io::write_off(off, P, mesh);
+
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  o.points = off;
+  o.complex = off;
+  const Certificate c = run_certify(o);
+  const CheckEntry& sanity = entry(c, CheckId::input_sanity);
+  EXPECT_EQ(sanity.details["off_manifold_points"], 150);
+  EXPECT_LT(std::stod(sanity.margin["max_distance_to_M"]["certified_upper_bound"].get<std::string>()), 4e-4);
+  EXPECT_EQ(entry(c, CheckId::restricted_delaunay).verdict, Verdict::certified)
+      << entry(c, CheckId::restricted_delaunay).summary;
+  EXPECT_EQ(entry(c, CheckId::covering).verdict, Verdict::certified);
+  for (CheckId id : {CheckId::stars, CheckId::consistency, CheckId::power_protection, CheckId::secure_simplices,
+                     CheckId::theorem, CheckId::star_radius, CheckId::tangential_equals_restricted}) {
+    EXPECT_EQ(entry(c, id).verdict, Verdict::report) << entry(c, id).summary;
+    EXPECT_NE(entry(c, id).summary.find("off M"), std::string::npos) << entry(c, id).summary;
+  }
+  EXPECT_EQ(entry(c, CheckId::topology).verdict, Verdict::certified);
+  EXPECT_EQ(c.overall(), Verdict::certified);
+
+  // A dropped triangle: refuted, the witness is its certified restricted Voronoi vertex.
+  io::Complex dropped = mesh;
+  const std::vector<int> gone = dropped.simplices[11];
+  dropped.simplices.erase(dropped.simplices.begin() + 11);
+  const std::string off2 = dir.file("dropped.off");
+  io::write_off(off2, P, dropped);
+  o.points = o.complex = off2;
+  const Certificate d = run_certify(o);
+  const CheckEntry& dd = entry(d, CheckId::restricted_delaunay);
+  ASSERT_EQ(dd.verdict, Verdict::refuted);
+  EXPECT_EQ(dd.witnesses[0]["simplex"].get<std::vector<int>>(), gone);
+  EXPECT_EQ(dd.witnesses[0]["kind"], "restricted_voronoi_vertex");
+
+  // A claim about Del_TM (star_radius) cannot be decided without tangent spaces: UNDECIDED.
+  o.points = o.complex = off;
+  o.claims = dir.file("claims.json");
+  write_text(o.claims, R"({"format": "delcert-claims v2", "star_radius": "1"})");
+  const Certificate u = run_certify(o);
+  EXPECT_EQ(entry(u, CheckId::star_radius).verdict, Verdict::undecided);
+  EXPECT_EQ(u.overall(), Verdict::undecided);
+  o.claims.clear();
+
+  // Where T_p M is needed (audit mode; a complex claimed tangential) the points are refused.
+  for (const bool audit : {true, false}) {
+    CertifyOptions t = o;
+    if (audit) t.complex.clear();
+    else t.kind = ComplexKind::tangential;
+    try {
+      run_certify(t);
+      ADD_FAILURE() << "points off M accepted for Del_TM (audit " << audit << ")";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--kind restricted"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

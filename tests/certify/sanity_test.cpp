@@ -14,7 +14,7 @@ double upper_bound(const CheckEntry& e) {
 }
 
 CheckEntry sanity(const std::string& spec, const io::PointSet& P, int threads = 1) {
-  return check_input_sanity(io::read_spec(spec), P, {}, "points.txt", threads);
+  return check_input_sanity(io::read_spec(spec), P, {}, "points.txt", false, threads).entry;
 }
 
 // The sphere written as (|x|^2 - 1)^2 = 0 has residuals ~1e-32 at the rotated octahedron's
@@ -72,7 +72,7 @@ TEST(Sanity, PointMovedAlongTheNormalHasACertifiedDistance) {
   // |F(p)| = |p|^2 - 1 ~ 2e-6 exceeds the default tolerance 1e-9: raise it in a spec copy.
   io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
   spec.residual_tolerance = mpq_class(1, 1000);
-  CheckEntry e = check_input_sanity(spec, P, {}, "points.txt", 2);
+  CheckEntry e = check_input_sanity(spec, P, {}, "points.txt", false, 2).entry;
   const double bound = upper_bound(e);
   mpq_class n2 = 0;
   for (double c : P.point(3)) n2 += exact::to_rational(c) * exact::to_rational(c);
@@ -84,7 +84,32 @@ TEST(Sanity, PointMovedAlongTheNormalHasACertifiedDistance) {
   // The same point with the squared equation is refused, whatever the tolerance.
   io::ManifoldSpec squared = io::read_spec(fixture("certify/spec-squared-sphere.json"));
   squared.residual_tolerance = mpq_class(1, 1000);
-  EXPECT_THROW(check_input_sanity(squared, P, {}, "points.txt", 1), io::InputError);
+  EXPECT_THROW(check_input_sanity(squared, P, {}, "points.txt", false, 1), io::InputError);
+  // Accepting points off M (a restricted claim) does not relax the distance certificate.
+  EXPECT_THROW(check_input_sanity(squared, P, {}, "points.txt", true, 1), io::InputError);
+}
+
+// Points beyond the residual tolerance: refused unless accepted (a complex claimed restricted,
+// issue 11 item 5); accepted, they are listed and their distance to M is still certified.
+TEST(Sanity, PointsOffMAreListedWhenAccepted) {
+  const double s = 1 + 1e-4;  // |F| ~ 2e-4 > 1e-9 at points 0 and 4
+  io::PointSet P = make_points(3, {{s, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1 / s}, {0, 0, -1}});
+  const io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
+  try {
+    check_input_sanity(spec, P, {3, 4, 5, 6, 7, 8}, "points.txt", false, 1);
+    ADD_FAILURE() << "a point off M was accepted";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("points.txt:3: point 0 is not on the manifold"), std::string::npos) << e.what();
+  }
+  const SanityResult r = check_input_sanity(spec, P, {}, "points.txt", true, 2);
+  EXPECT_EQ(r.off_manifold, (std::vector<int>{0, 4}));
+  EXPECT_EQ(r.entry.details["off_manifold_points"], 2);
+  EXPECT_EQ(r.entry.details["first_off_manifold_point"], 0);
+  EXPECT_GE(upper_bound(r.entry), 1e-4);  // |p| - 1 at point 0
+  EXPECT_LE(upper_bound(r.entry), 1e-4 + 1e-12);
+  EXPECT_NE(r.entry.summary.find("2 point(s) off M"), std::string::npos) << r.entry.summary;
+  // Within the tolerance nothing is listed.
+  EXPECT_TRUE(check_input_sanity(spec, make_points(3, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), {}, "p", true, 1).off_manifold.empty());
 }
 
 TEST(Sanity, So3PointsNearTheGroupAndTheWrongComponent) {
@@ -93,12 +118,13 @@ TEST(Sanity, So3PointsNearTheGroupAndTheWrongComponent) {
   spec.residual_tolerance = mpq_class(1, 1000);
   // diag(1 + e, 1, 1) is at distance (1 + e) - 1 from SO(3) (its polar factor is I).
   io::PointSet P = make_points(9, {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 1, 0, -1, 0, 0, 0, 0, 1}, {1 + e, 0, 0, 0, 1, 0, 0, 0, 1}});
-  CheckEntry c = check_input_sanity(spec, P, {}, "points.txt", 1);
+  CheckEntry c = check_input_sanity(spec, P, {}, "points.txt", false, 1).entry;
   EXPECT_GE(upper_bound(c), P.point(2)[0] - 1);
   EXPECT_LE(upper_bound(c), P.point(2)[0] - 1 + 1e-14);
   EXPECT_EQ(c.margin["max_distance_to_M"]["at_point"], 2);
   io::PointSet W = make_points(9, {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {-1, 0, 0, 0, 1, 0, 0, 0, 1}});
-  EXPECT_THROW(check_input_sanity(spec, W, {}, "points.txt", 1), io::InputError);
+  EXPECT_THROW(check_input_sanity(spec, W, {}, "points.txt", false, 1), io::InputError);
+  EXPECT_THROW(check_input_sanity(spec, W, {}, "points.txt", true, 1), io::InputError);  // wrong component, still
 }
 
 TEST(Sanity, BuiltinSamplesPassWithTinyDistances) {
