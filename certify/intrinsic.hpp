@@ -1,0 +1,71 @@
+// The intrinsic Delaunay complex Del_M(P): the nerve of the Voronoi diagram of P on M for the
+// geodesic distance d_M (docs/design.md §3.9; checks 14 and 15, issue 12). Computed only where
+// the spec declares a closed-form metric (io::ShapeSpec in `metric`):
+//   * sphere (M a round hypersphere, m = N - 1): certify/intrinsic_sphere.cpp;
+//   * product_of_circles (a flat torus, N = 2m): certify/intrinsic_torus.cpp;
+//   * anything else: not computed, with the reason (no closed-form geodesic distance, or a metric
+//     this version does not handle yet).
+//
+// POINTS NEAR M. d_M(x, p) is defined for x, p in M; the sample's points are doubles, only near
+// M. Convention (stated in the certificate): d_M(x, p) := d_M(x, pi(p)), pi the nearest-point
+// projection onto M in closed form for the supported metrics (sphere: the radial projection
+// from the centre; product of circles: the radial projection within each coordinate plane).
+// So Del_M(P) := Del_M(pi(P)). The projections are irrational; every predicate on them is
+// evaluated in certified arithmetic (exact rationals where possible, MPFI enclosures otherwise)
+// and a sign that the enclosure cannot decide leaves the simplex UNDECIDED: ties are "not
+// protected", never guessed.
+//
+// CANDIDATES. The caller passes candidate m-simplices (the Del_RM and Del_TM simplices found by
+// checks 3 and 12). Each is decided on its own: certified in Del_M (with its intrinsic Voronoi
+// vertex as witness), proven not in Del_M (with a witness), or undecided. COMPLETENESS is proven
+// without trusting the candidates: the certified simplices form a closed pseudomanifold (every
+// (m-1)-face in exactly two of them), and each engine proves why that forces them to be all of
+// Del_M (see its .cpp).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "certify/detail/grid.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
+
+namespace delcert::certify {
+
+struct IntrinsicSimplex {
+  std::vector<int> simplex;  // sorted point indices, m + 1 of them
+  nlohmann::json witness;    // why it is in Del_M (kind "intrinsic_voronoi_vertex": the vertex, radius, margin)
+};
+
+struct IntrinsicRejection {
+  std::vector<int> simplex;
+  nlohmann::json witness;  // why it is not in Del_M (kind "not_intrinsic": the point(s) proven closer)
+};
+
+struct IntrinsicUndecided {
+  std::vector<int> simplex;
+  std::string reason;  // e.g. "a point is on the boundary of its empty geodesic ball (not protected)"
+};
+
+struct IntrinsicDelaunay {
+  bool computed = false;          // a supported closed-form metric; otherwise `reason` says why not
+  std::string metric;             // "sphere", "product_of_circles", or "" (none declared)
+  std::string convention;         // how d_M(x, p) is defined for p near M (see above), for the certificate
+  std::string completeness;       // the completeness argument used, for the certificate
+  std::vector<IntrinsicSimplex> simplices;   // certified m-simplices of Del_M(P), sorted by simplex, unique
+  std::vector<IntrinsicRejection> rejected;  // candidates proven not in Del_M, sorted by simplex
+  std::vector<IntrinsicUndecided> undecided; // candidates neither, sorted by simplex
+  bool complete = false;          // `simplices` are ALL the m-simplices of Del_M(P), and Del_M is pure
+  std::string reason;             // why not computed / not complete ("" when complete)
+};
+
+// `candidates`: sorted vertex sets with m + 1 entries (duplicates allowed). Never throws on
+// geometric input; throws std::invalid_argument on a malformed candidate (wrong size, index out
+// of range).
+IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
+                                             const detail::PointGrid& grid,
+                                             const std::vector<std::vector<int>>& candidates, int threads);
+
+}  // namespace delcert::certify
