@@ -22,9 +22,10 @@ const char* check_name(CheckId id) {
   static constexpr const char* names[] = {"input_sanity",     "sparsity",         "stars",    "consistency",
                                           "thickness",        "power_protection", "secure_simplices",
                                           "topology",         "theorem",          "star_radius",
-                                          "covering",         "restricted_delaunay", "tangential_equals_restricted"};
+                                          "covering",         "restricted_delaunay", "tangential_equals_restricted",
+                                          "intrinsic_delaunay", "restricted_equals_intrinsic"};
   const int k = check_number(id);
-  return k >= 1 && k <= 13 ? names[k - 1] : "?";
+  return k >= 1 && k <= 15 ? names[k - 1] : "?";
 }
 
 void CheckEntry::refute(std::string why) {

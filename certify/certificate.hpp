@@ -26,7 +26,8 @@ const char* to_string(Verdict v);
 enum class CheckId {
   input_sanity = 1, sparsity = 2, stars = 3, consistency = 4, thickness = 5,
   power_protection = 6, secure_simplices = 7, topology = 8, theorem = 9, star_radius = 10,
-  covering = 11, restricted_delaunay = 12, tangential_equals_restricted = 13,
+  covering = 11, restricted_delaunay = 12, tangential_equals_restricted = 13, intrinsic_delaunay = 14,
+  restricted_equals_intrinsic = 15,
 };
 // The number and the name written in the certificate ("id", "name").
 constexpr int check_number(CheckId id) { return static_cast<int>(id); }

@@ -10,6 +10,7 @@
 
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
+#include "certify/intrinsic.hpp"
 #include "certify/restricted.hpp"
 #include "certify/sanity.hpp"
 #include "certify/detail/sha256.hpp"
@@ -778,6 +779,132 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
   return eq;
 }
 
+// Check 14: Del_M(P) computed (certify/intrinsic.hpp) and, with --kind intrinsic, compared with
+// the given complex. Not a claim with --kind restricted (REPORT, the decision in details).
+CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::Complex>& given, bool intrinsic_kind,
+                           bool claimed, int m) {
+  CheckEntry im(CheckId::intrinsic_delaunay);
+  im.details = {{"metric", D.metric.empty() ? json(nullptr) : json(D.metric)}};
+  if (!D.computed) {
+    im.undecide(D.reason);
+    im.summary = "not computed: " + D.reason;
+  } else {
+    im.details["convention"] = D.convention;
+    im.details["completeness"] = D.completeness;
+    im.details["m_simplices"] = D.simplices.size();
+    im.details["candidates_rejected"] = D.rejected.size();
+    json und = json::array();
+    for (const auto& u : D.undecided)
+      if (und.size() < 10) und.push_back({{"simplex", u.simplex}, {"reason", u.reason}});
+    im.details["candidates_undecided"] = D.undecided.size();
+    im.details["undecided_examples"] = und;
+    if (!D.complete) im.undecide("Del_M(P) not known completely: " + D.reason);
+    long missing = 0, extra = 0;
+    if (intrinsic_kind && given) {
+      std::set<Simplex> tops, certified;
+      for (const auto& s0 : given->simplices) {
+        Simplex s = s0;
+        std::sort(s.begin(), s.end());
+        if (static_cast<int>(s.size()) == m + 1) tops.insert(s);
+      }
+      for (const auto& s : D.simplices) {
+        certified.insert(s.simplex);
+        if (tops.count(s.simplex)) continue;
+        ++missing;
+        im.refute("a simplex of Del_M(P) is missing from the complex");
+        im.add_witness(s.witness);
+      }
+      for (const auto& r : D.rejected)
+        if (tops.count(r.simplex)) {
+          ++extra;
+          im.refute("a simplex of the complex is not in Del_M(P)");
+          im.add_witness(r.witness);
+        }
+      for (const auto& s0 : given->simplices) {
+        Simplex s = s0;
+        std::sort(s.begin(), s.end());
+        const bool top = static_cast<int>(s.size()) == m + 1;
+        bool face = top;
+        for (const auto& t : tops)
+          if (!face && std::includes(t.begin(), t.end(), s.begin(), s.end())) face = static_cast<int>(s.size()) < m + 1;
+        if (top ? certified.count(s) || !D.complete : face) continue;
+        if (top && std::any_of(D.rejected.begin(), D.rejected.end(), [&](const auto& r) { return r.simplex == s; }))
+          continue;  // already a witness
+        ++extra;
+        if (!D.complete) continue;
+        im.refute("a simplex of the complex is not in Del_M(P)");
+        im.add_witness({{"kind", top ? "not_intrinsic" : "not_a_face_of_an_m_simplex"},
+                        {"simplex", s},
+                        {"detail", "Del_M(P) is known completely (check 14) and does not contain it"}});
+      }
+      im.claim = {{"kind", "intrinsic"}, {"meaning", "the complex is the intrinsic Delaunay complex Del_M(P)"}};
+      im.details["missing_simplices"] = missing, im.details["extra_simplices"] = extra;
+    }
+    im.summary = std::to_string(D.simplices.size()) + " m-simplices of Del_M(P) certified" +
+                 (D.complete ? " (all of them)" : " (maybe not all)") +
+                 (intrinsic_kind && given ? "; " + std::to_string(missing) + " missing from the complex, " +
+                                                std::to_string(extra) + " not in Del_M"
+                                          : "");
+  }
+  if (!claimed) {
+    im.details["decision"] = to_string(im.verdict);
+    im.verdict = Verdict::report;
+    im.summary += " [not claimed]";
+  }
+  return im;
+}
+
+// Check 15: Del_RM(P) = Del_M(P) on m-simplices, decided either way with witnesses.
+CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const IntrinsicDelaunay& D, bool claimed) {
+  CheckEntry eq(CheckId::restricted_equals_intrinsic);
+  long only_rm = 0, only_m = 0;
+  std::set<Simplex> rm, im, rejected;
+  if (R)
+    for (const auto& s : R->simplices) rm.insert(s.simplex);
+  for (const auto& s : D.simplices) im.insert(s.simplex);
+  for (const auto& r : D.rejected) rejected.insert(r.simplex);
+  if (R && D.computed) {
+    for (const auto& s : R->simplices) {
+      const bool proven_out = rejected.count(s.simplex) || (D.complete && !im.count(s.simplex));
+      if (!proven_out) continue;
+      ++only_rm;
+      eq.refute("a simplex of Del_RM(P) is not in Del_M(P)");
+      json w = vertex_witness(s);
+      w["not_in"] = "Del_M(P)";
+      for (const auto& r : D.rejected)
+        if (r.simplex == s.simplex) w["intrinsic_witness"] = r.witness;
+      eq.add_witness(w);
+    }
+    for (const auto& s : D.simplices) {
+      if (rm.count(s.simplex) || !R->covering_certified) continue;
+      ++only_m;
+      eq.refute("a simplex of Del_M(P) is not in Del_RM(P)");
+      json w = s.witness;
+      w["not_in"] = "Del_RM(P)";
+      eq.add_witness(w);
+    }
+  }
+  if (eq.verdict == Verdict::certified) {
+    if (!R) eq.undecide("Del_RM(P) not computed");
+    else if (!D.computed) eq.undecide("Del_M(P) not computed: " + D.reason);
+    else if (!R->covering_certified) eq.undecide("Del_RM(P) not known completely: " + R->reason);
+    else if (!D.complete) eq.undecide("Del_M(P) not known completely: " + D.reason);
+  }
+  eq.details = {{"restricted_m_simplices", rm.size()}, {"intrinsic_m_simplices", im.size()},
+                {"only_in_restricted", only_rm}, {"only_in_intrinsic", only_m}};
+  const std::string decided = eq.verdict == Verdict::certified ? "Del_RM(P) = Del_M(P)"
+                              : eq.verdict == Verdict::refuted ? "Del_RM(P) != Del_M(P)"
+                                                               : "Del_RM(P) = Del_M(P) not decided";
+  eq.summary = decided + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
+               std::to_string(only_rm) + " only restricted, " + std::to_string(only_m) + " only intrinsic)";
+  if (!claimed) {
+    eq.details["decision"] = to_string(eq.verdict);
+    eq.verdict = Verdict::report;
+    eq.summary += " [not claimed]";
+  }
+  return eq;
+}
+
 }  // namespace
 
 Certificate run_certify(const CertifyOptions& o) {
@@ -807,11 +934,15 @@ Certificate run_certify(const CertifyOptions& o) {
   // restricted (check 12 compares it with Del_RM; the stars are computed as in audit mode).
   const bool restricted_kind =
       in.given && (o.kind == ComplexKind::restricted || (o.kind == ComplexKind::automatic && in.given_is_off));
-  if (restricted_kind && o.skip_restricted)
-    throw io::InputError(o.complex, 0, "the complex is claimed to be restricted Delaunay (--kind restricted, the "
-                                       "default for OFF), which needs checks 11-13: drop --skip-restricted or pass "
-                                       "--kind tangential");
-  C.parameters["kind"] = !in.given ? "audit" : restricted_kind ? "restricted" : "tangential";
+  const bool intrinsic_kind = in.given && o.kind == ComplexKind::intrinsic;
+  if ((restricted_kind || intrinsic_kind) && o.skip_restricted)
+    throw io::InputError(o.complex, 0, std::string("the complex is claimed to be ") +
+                                           (intrinsic_kind ? "intrinsic Delaunay (--kind intrinsic), which needs checks 14-15"
+                                                           : "restricted Delaunay (--kind restricted, the default for "
+                                                             "OFF), which needs checks 11-13") +
+                                           ": drop --skip-restricted or pass --kind tangential");
+  const bool tangential_kind = in.given && !restricted_kind && !intrinsic_kind;
+  C.parameters["kind"] = !in.given ? "audit" : restricted_kind ? "restricted" : intrinsic_kind ? "intrinsic" : "tangential";
 
   Stopwatch watch;
   SanityResult sanity = check_input_sanity(spec, P, in.point_lines, o.points, restricted_kind, threads);
@@ -829,7 +960,7 @@ Certificate run_certify(const CertifyOptions& o) {
   std::optional<ProtectionResult> protection;
   std::optional<RadiusResult> radius;
   if (on_M) {
-    stars = analyse_stars(restricted_kind ? std::nullopt : in.given, S, threads, ctx);
+    stars = analyse_stars(tangential_kind ? in.given : std::nullopt, S, threads, ctx);
     watch.record(C, "stars");
     stars_entry = check_stars(*stars, m);
     consistency = check_consistency(*stars, S, ctx_consistency);
@@ -850,7 +981,7 @@ Certificate run_certify(const CertifyOptions& o) {
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by
   // check 3 (wrong dimension, with the simplex as witness); their 2^n faces are never enumerated
   // (a 32-vertex simplex would hang).
-  const io::Complex& K = restricted_kind ? *in.given : stars->complex;  // what checks 5 and 8 look at
+  const io::Complex& K = tangential_kind || !in.given ? stars->complex : *in.given;  // what checks 5 and 8 look at
   std::vector<Simplex> lattice_simplices;
   for (const auto& s : K.simplices)
     if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
@@ -879,7 +1010,8 @@ Certificate run_certify(const CertifyOptions& o) {
   }
 
   // Checks 11-13: the certified restricted Voronoi diagram.
-  std::optional<CheckEntry> covering, restricted, equal;
+  std::optional<CheckEntry> covering, restricted, equal, intrinsic, equal_mi;
+  std::optional<RestrictedDelaunay> R;
   if (o.skip_restricted || m > 3) {
     const std::string why = o.skip_restricted ? "" : "the certified restricted Voronoi diagram is built for m <= 3 (here m = " +
                                                          std::to_string(m) + ")";
@@ -888,13 +1020,37 @@ Certificate run_certify(const CertifyOptions& o) {
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
-    const RestrictedDelaunay R = compute_restricted_delaunay(system, P, grid, ro);
-    covering = check_covering(R, claims.covering, spec);
-    restricted = check_restricted(R, in.given, restricted_kind, m);
-    equal = on_M ? check_tangential_equals_restricted(*stars, R, !restricted_kind)
+    R = compute_restricted_delaunay(system, P, grid, ro);
+    covering = check_covering(*R, claims.covering, spec);
+    restricted = check_restricted(*R, in.given, restricted_kind, m);
+    equal = on_M ? check_tangential_equals_restricted(*stars, *R, !restricted_kind && !intrinsic_kind)
                  : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);
   }
   watch.record(C, "restricted_delaunay");
+
+  // Checks 14-15: Del_M, from the candidates of Del_RM, Del_TM and the given complex.
+  if (o.skip_restricted) {
+    intrinsic = not_computed(CheckId::intrinsic_delaunay), equal_mi = not_computed(CheckId::restricted_equals_intrinsic);
+  } else {
+    std::vector<Simplex> candidates;
+    if (R)
+      for (const auto& s : R->simplices) candidates.push_back(s.simplex);
+    if (stars)
+      for (const auto& r : stars->reports)
+        if (r.state == StarReport::State::proven)
+          for (const auto& c : r.star) candidates.push_back(c.simplex);
+    if (in.given)
+      for (const auto& s0 : in.given->simplices)
+        if (static_cast<int>(s0.size()) == m + 1) {
+          Simplex s = s0;
+          std::sort(s.begin(), s.end());
+          if (std::adjacent_find(s.begin(), s.end()) == s.end()) candidates.push_back(s);
+        }
+    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
+    intrinsic = check_intrinsic(D, in.given, intrinsic_kind, !restricted_kind, m);
+    equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D, !restricted_kind && !intrinsic_kind);
+  }
+  watch.record(C, "intrinsic_delaunay");
 
   for (auto& c : ctx) C.filter.merge(c.stats);
   C.filter.merge(ctx_sparsity.stats);
@@ -912,6 +1068,8 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(std::move(*covering));
   C.checks.push_back(std::move(*restricted));
   C.checks.push_back(std::move(*equal));
+  C.checks.push_back(std::move(*intrinsic));
+  C.checks.push_back(std::move(*equal_mi));
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error

@@ -1,4 +1,4 @@
-// delcert-certify's driver: reads each input once, runs checks 1-13 (one function each; their
+// delcert-certify's driver: reads each input once, runs checks 1-15 (one function each; their
 // numbers and names are CheckId in certificate.hpp) and assembles the certificate.
 //
 //   1 input_sanity       points near M (exact residuals, certified distance), right component, full-rank Jacobian
@@ -15,6 +15,9 @@
 //  12 restricted_delaunay Del_RM(P) from the certified restricted Voronoi diagram; with --kind
 //                        restricted, the complex is exactly Del_RM(P)
 //  13 tangential_equals_restricted  Del_TM(P) = Del_RM(P), either way with witnesses
+//  14 intrinsic_delaunay Del_M(P) for a closed-form metric (certify/intrinsic.hpp); with --kind
+//                        intrinsic, the complex is exactly Del_M(P)
+//  15 restricted_equals_intrinsic   Del_RM(P) = Del_M(P), either way with witnesses
 #pragma once
 
 #include <string>
@@ -25,8 +28,8 @@
 namespace delcert::certify {
 
 // What the given complex is claimed to be. automatic: restricted for an OFF file (a surface
-// mesher's output), tangential otherwise.
-enum class ComplexKind { automatic, tangential, restricted };
+// mesher's output), tangential otherwise. intrinsic: Del_M (check 14 compares).
+enum class ComplexKind { automatic, tangential, restricted, intrinsic };
 
 struct CertifyOptions {
   std::string manifold;  // spec path or builtin:NAME
@@ -34,8 +37,8 @@ struct CertifyOptions {
   std::string complex;   // empty: audit the point set (compute Del_TM)
   std::string claims;    // empty: no claims
   ComplexKind kind = ComplexKind::automatic;
-  // Checks 11-13 are not computed (their entries say so, verdict REPORT): the certificate is then
-  // about Del_TM(P) only. Not allowed with kind restricted.
+  // Checks 11-15 are not computed (their entries say so, verdict REPORT): the certificate is then
+  // about Del_TM(P) only. Not allowed with kind restricted or intrinsic.
   bool skip_restricted = false;
   int threads = 1;
   // Every exact/ predicate skips its interval filter and decides exactly (and check 7 decides

@@ -1,10 +1,66 @@
 #include "certify/intrinsic.hpp"
 
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "exact/polynomial.hpp"
 
 #include "certify/detail/intrinsic_engines.hpp"
 
 namespace delcert::certify {
+
+namespace {
+
+// F = lambda G for some rational lambda != 0 (exact polynomial identity).
+bool proportional(const exact::Polynomial& F, const exact::Polynomial& G) {
+  if (F.is_zero() || G.is_zero()) return false;
+  const exact::Term& f0 = F.terms().front();
+  for (const exact::Term& g : G.terms())
+    if (g.monomial == f0.monomial) return F == G.scaled(mpq_class(f0.coefficient / g.coefficient));
+  return false;
+}
+
+// sum_v (x_v - c_v)^2 - r^2 over the given variables.
+exact::Polynomial sphere_polynomial(const std::vector<int>& vars, const std::vector<mpq_class>& centre,
+                                    const mpq_class& r, int N) {
+  exact::Polynomial P = exact::Polynomial::constant(-r * r, N);
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    const exact::Polynomial d = exact::Polynomial::variable(vars[i], N) - exact::Polynomial::constant(centre[i], N);
+    P = P + d * d;
+  }
+  return P;
+}
+
+// The declared metric is used only when the equations are exactly those of the declared shape
+// (up to nonzero rational factors and order): then M is that shape, and the closed-form geodesic
+// distance is M's own. Otherwise the declaration is not trusted.
+std::string metric_mismatch(const io::ManifoldSpec& spec) {
+  const io::ShapeSpec& g = *spec.metric;
+  const int N = spec.ambient_dimension;
+  std::vector<exact::Polynomial> expected;
+  if (g.kind == io::ShapeSpec::Kind::sphere) {
+    std::vector<int> vars(N);
+    for (int v = 0; v < N; ++v) vars[v] = v;
+    expected.push_back(sphere_polynomial(vars, g.center, g.radius, N));
+  } else {
+    for (std::size_t i = 0; i < g.radii.size(); ++i)
+      expected.push_back(sphere_polynomial({int(2 * i), int(2 * i + 1)}, {0, 0}, g.radii[i], N));
+  }
+  if (spec.equations.size() != expected.size()) return "the spec has another number of equations than its metric";
+  std::vector<bool> used(expected.size(), false);
+  for (std::size_t i = 0; i < spec.equations.size(); ++i) {
+    bool found = false;
+    for (std::size_t j = 0; j < expected.size() && !found; ++j)
+      if (!used[j] && proportional(spec.equations[i], expected[j])) used[j] = found = true;
+    if (!found)
+      return "equation " + std::to_string(i + 1) + " is not (a multiple of) an equation of the declared metric's shape";
+  }
+  if (spec.selector) return "the spec has a selector: M may be only a component of the declared shape";
+  return "";
+}
+
+}  // namespace
 
 IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
                                              const detail::PointGrid& grid,
@@ -22,11 +78,18 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
     return D;
   }
   const io::ShapeSpec& g = *spec.metric;
-  if (g.kind == io::ShapeSpec::Kind::sphere && N == m + 1)
-    return detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads);
-  if (g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m &&
-      static_cast<int>(g.radii.size()) == m)
-    return detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads);
+  const bool sphere = g.kind == io::ShapeSpec::Kind::sphere && N == m + 1;
+  const bool torus = g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m && static_cast<int>(g.radii.size()) == m;
+  if (sphere || torus) {
+    const std::string mismatch = metric_mismatch(spec);
+    if (!mismatch.empty()) {
+      D.metric = sphere ? "sphere" : "product_of_circles";
+      D.reason = "the declared metric is not used: " + mismatch;
+      return D;
+    }
+    return sphere ? detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads)
+                  : detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads);
+  }
   D.metric = g.kind == io::ShapeSpec::Kind::so3 ? "so3"
              : g.kind == io::ShapeSpec::Kind::sphere ? "sphere"
              : g.kind == io::ShapeSpec::Kind::product_of_circles ? "product_of_circles"

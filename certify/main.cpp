@@ -1,6 +1,6 @@
 // delcert-certify: the independent checker (docs/design.md §1, §5, §9).
 //
-//   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted]
+//   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted|intrinsic]
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
 //                   [--skip-restricted]
 //
@@ -34,13 +34,13 @@ int main(int argc, char** argv) {
                  "computed and audited");
   std::string kind;
   app.add_option("--kind", kind,
-                 "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files) or "
-                 "restricted (Del_RM, the default for OFF: a surface mesher's output)")
-      ->check(CLI::IsMember({"tangential", "restricted"}));
+                 "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files), "
+                 "restricted (Del_RM, the default for OFF: a surface mesher's output) or intrinsic (Del_M)")
+      ->check(CLI::IsMember({"tangential", "restricted", "intrinsic"}));
   app.add_option("--claims", o.claims,
                  "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
   app.add_flag("--skip-restricted", o.skip_restricted,
-               "do not compute the restricted Voronoi diagram (checks 11-13): the certificate is about Del_TM only");
+               "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
   app.add_option("--threads", o.threads, "worker threads (0: all cores); the certificate does not depend on it")
       ->check(CLI::Range(0, 256))
@@ -54,7 +54,10 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
-  if (!kind.empty()) o.kind = kind == "restricted" ? certify::ComplexKind::restricted : certify::ComplexKind::tangential;
+  if (!kind.empty())
+    o.kind = kind == "restricted"  ? certify::ComplexKind::restricted
+             : kind == "intrinsic" ? certify::ComplexKind::intrinsic
+                                   : certify::ComplexKind::tangential;
   if (!kind.empty() && o.complex.empty()) {
     std::cerr << "delcert-certify: --kind needs --complex (it says what the given complex is claimed to be)\n";
     return 2;
