@@ -117,7 +117,9 @@ class CellAnalysis {
     }
     // Candidates: every point of the closed ball B(p, 2r) (see the header); 2r is exact.
     const std::span<const double> pp = points.point(p);
-    for (int q : grid.ball(pp, 2 * r)) {
+    const std::vector<int> ball = grid.ball(pp, 2 * r);
+    cands_.reserve(ball.size());
+    for (int q : ball) {
       if (q == p) continue;
       Candidate C;
       C.index = q;
@@ -219,6 +221,17 @@ class CellAnalysis {
       IA t(0);
       for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
       for (int l = 0; l < k_; ++l) t += ia(N_enc_[v * k_ + l]) * ia(H[l]);
+      s += exact::square(t);
+    }
+    return s;
+  }
+  // Enclosure of |T u|^2 over U: dist2(U, H) with H = {0} (the same operations: adding the
+  // exact zero products changes no bound), without building the zero box.
+  IA dist2_tangent(const Box& U) const {
+    IA s(0);
+    for (int v = 0; v < N_; ++v) {
+      IA t(0);
+      for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
       s += exact::square(t);
     }
     return s;
@@ -325,7 +338,7 @@ class CellAnalysis {
     exact::UpwardRounding up;
     // The region: U x Hpar, Hpar = the parent's slab cut to H_ball(U) = [-b, b]^k with
     // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
-    const IA room = r2_ - dist2(w.U, Box(k_, Interval{0, 0}));
+    const IA room = r2_ - dist2_tangent(w.U);
     if (room.sup() <= 0) {  // |T u| >= r over U: outside the ball
       ++report_.discarded;
       return;
@@ -341,11 +354,20 @@ class CellAnalysis {
       ++report_.discarded;
       return;
     }
-    for (int i : w.S)
-      if (sign_form(cands_[i], w.U, H).sup() < 0) {
+    // Candidates certainly farther than p on U x H are dropped here already: H contains every slab
+    // used below for this box (the chart's slab is cut to H, the normal halving splits H), and the
+    // interval hull of the affine form s_q is inclusion-isotone, so such a q is certainly farther on
+    // each of those regions too and can decide nothing there. The parent's list stays for the second pass.
+    std::vector<int> S_parent = std::move(w.S);
+    w.S.clear();
+    for (int i : S_parent) {
+      const IA s = sign_form(cands_[i], w.U, H);
+      if (s.sup() < 0) {
         ++report_.discarded;
         return;
       }
+      if (!(s.inf() > 0)) w.S.push_back(i);
+    }
     // The chart's slab replaces it when the rest of the region is excluded (THE SLAB INVARIANT).
     const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
     // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
@@ -405,7 +427,8 @@ class CellAnalysis {
         }
         if (!(s.inf() > 0)) kept.push_back(i);
       }
-      S_in = std::exchange(w.S, std::move(kept));
+      w.S = std::move(kept);
+      S_in = std::move(S_parent);
       d2 = dist2(w.U, H);
     }
     const int n = static_cast<int>(w.S.size()) + 1;

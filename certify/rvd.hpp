@@ -26,7 +26,9 @@
 // For a child box U, let Hpar = H_eff(parent) ∩ H_ball(U) (still holds every such x: U lies in
 // the parent's box). When exact::ChartEnclosure proves a unique point of M over every u in U in a
 // slab Hc, H_eff(U) = Hc ∩ Hpar PROVIDED U x (Hpar \ Hc) is excluded (2k boxes, each tested with
-// the parent's candidates, valid there); else H_eff(U) = Hpar. Excluded means: outside the ball,
+// the parent's candidates, valid there, less those already certainly farther than p on all of
+// U x Hpar: such a q is certainly farther on every part of it and could exclude nothing there,
+// and any point of P certainly closer excludes, whatever list it comes from); else H_eff(U) = Hpar. Excluded means: outside the ball,
 // free of M (some chart equation G_i excludes 0) or certainly closer to some candidate q than to
 // p, tested on the box and, failing that, on halves along the widest normal side
 // (options.normal_levels times). Then q is dropped from S when certainly farther than p on

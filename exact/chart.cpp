@@ -76,6 +76,71 @@ double max_abs(std::span<const double> v) {
   return r;
 }
 
+// guess_slab for codimension 1 (hypersurfaces: the common case), with scalars instead of a 1 x 1
+// LU. It computes the same doubles as the general version: Eigen's FullPivLU of a 1 x 1 matrix
+// J is invertible iff J != 0 (the rank threshold is |J| eps < |J|), solves a vector right-hand
+// side by dividing by J (TriangularSolverVector.h) and a matrix right-hand side by multiplying
+// with 1 / J (TriangularSolverMatrix.h); the permutations are the identity. Ordinary floating
+// point, as in guess_slab: it only chooses H.
+bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<const double> h_hint,
+                       std::vector<double>& h0, std::vector<double>& r) {
+  const int m = S.m;
+  double zbuf[16];
+  std::vector<double> zvec;
+  if (m + 1 > 16) zvec.resize(m + 1);
+  const std::span<double> z(m + 1 > 16 ? zvec.data() : zbuf, m + 1);
+  double rad_u = 0;
+  NearestRounding nearest;
+  for (int a = 0; a < m; ++a) rad_u = std::max(rad_u, 0.5 * U[a].width());
+  double g = 0, jh = 0;
+  auto linearise = [&](double h) {
+    z[m] = h;
+    const std::span<const double> zc(z.data(), z.size());
+    g = S.g[0](zc);
+    jh = S.gh[0](zc);
+    return std::isfinite(g) && std::isfinite(jh);
+  };
+  // Newton for G(z_u, .) = 0 from h; false when it breaks down. On success g and jh hold the
+  // values at the final iterate (J_u is evaluated by the caller where needed).
+  auto newton = [&](double& h) {
+    for (int it = 0; it < S.options.newton_steps; ++it) {
+      if (!linearise(h)) return false;
+      if (jh == 0) return false;
+      const double step = g / jh;
+      h -= step;
+      const double size = std::abs(step), scale = std::abs(h);
+      if (!std::isfinite(size)) return false;
+      if (size <= 0x1.0p-50 * (scale + rad_u)) break;
+    }
+    return linearise(h);
+  };
+  auto ju_finite = [&] {
+    const std::span<const double> zc(z.data(), z.size());
+    for (int a = 0; a < m; ++a)
+      if (!std::isfinite(S.gu[a](zc))) return false;
+    return true;
+  };
+  for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
+  if (!h_hint.empty()) h0.assign(h_hint.begin(), h_hint.end());
+  if (!newton(h0[0]) || !ju_finite()) return false;  // no approximate point of M over the centre
+  if (jh == 0) return false;
+  {
+    const std::span<const double> zc(z.data(), z.size());
+    const double inv = 1.0 / jh;
+    for (int a = 0; a < m; ++a) r[0] += std::abs(S.gu[a](zc) * inv) * 0.5 * U[a].width();
+  }
+  for (int corner = 0; corner < (1 << m); ++corner) {
+    for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
+    double hc = h0[0];
+    if (!newton(hc) || !ju_finite()) continue;
+    r[0] = std::max(r[0], std::abs(hc - h0[0]));
+  }
+  double floor_scale = max_abs(h0) + rad_u;
+  if (floor_scale == 0) floor_scale = max_abs(S.p);
+  r[0] = S.options.safety * r[0] + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
+  return std::isfinite(r[0]);
+}
+
 // The approximate centre h0 and predicted spread r of enclose() (see chart.hpp), in ordinary
 // floating point (it only chooses H). False when no approximate point of M over U's centre is
 // found. MaxK, MaxM bound k and m for Eigen's storage (Eigen::Dynamic: unbounded, on the heap).
@@ -277,7 +342,7 @@ ChartResult ChartEnclosure::enclose(const Box& U, std::span<const double> h_hint
   std::vector<double> h0(k, 0.0), r(k, 0.0);
   // Small k and m (the usual case): matrices with fixed maximal storage (no heap); the same
   // Eigen algorithms, so the same doubles.
-  const bool guessed = k <= 4 && m <= 4 ? guess_slab<4, 4>(S, U, h_hint, h0, r) : guess_slab<Eigen::Dynamic, Eigen::Dynamic>(S, U, h_hint, h0, r);
+  const bool guessed = k == 1 ? guess_slab_scalar(S, U, h_hint, h0, r) : k <= 4 && m <= 4 ? guess_slab<4, 4>(S, U, h_hint, h0, r) : guess_slab<Eigen::Dynamic, Eigen::Dynamic>(S, U, h_hint, h0, r);
   if (!guessed) return out;
   for (int attempt = 0; attempt < S.options.attempts; ++attempt) {
     Box H(k);
