@@ -54,7 +54,9 @@
 // {u_j}, its centre is the circumcentre c, which has q inside. An empty ball of radius >= rho / 2
 // is excluded only when the covering radius of P in M is below rho / 2; that is proven by
 // completeness (below), so a rejection is reported only when Del_M is complete, and otherwise
-// the candidate is UNDECIDED with the witness in the reason.
+// the candidate is UNDECIDED with the witness in the reason. Conversely, when Del_M is complete,
+// every candidate left UNDECIDED is REJECTED "by completeness" (it is not one of the certified
+// vertex sets, which are all of Del_M).
 //
 // COMPLETENESS. Claim: if the certified simplices are nonempty, have pairwise distinct vertex sets,
 // every (m-1)-subset of a certified simplex lies in exactly two certified simplices, and every
@@ -310,7 +312,8 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
     Enclosure e2(0L);
     for (int i = 0; i < m; ++i) {
       const Enclosure a(x[2 * i]), b(x[2 * i + 1]);
-      T.phi[p].push_back(atan2(b, a));
+      // atan2(+-0, x < 0) = pi exactly: MPFI would return the whole branch cut [-pi, pi] there.
+      T.phi[p].push_back(x[2 * i + 1] == 0 && x[2 * i] < 0 ? T.pi : atan2(b, a));
       e2 = e2 + square(sqrt(square(a) + square(b)) - T.r[i]);
     }
     e_max = std::max(e_max, sqrt(e2).upper());
@@ -325,6 +328,7 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
   parallel_for(unique.size(), threads, [&](std::size_t k, int) { outcomes[k] = decide(T, points, grid, unique[k]); });
 
   std::vector<Outcome*> rejected;
+  std::vector<IntrinsicRejection> rejected_by_completeness;
   std::vector<const std::vector<int>*> rejected_simplex;
   for (std::size_t k = 0; k < unique.size(); ++k) {
     Outcome& o = outcomes[k];
@@ -371,6 +375,16 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
   D.reason = D.complete ? "" : "not complete: " + why;
 
   // A rejection refutes only empty balls of radius < pi min r_i / 2; completeness bounds every one.
+  // Completeness also decides every undecided candidate: Del_M is exactly the certified simplices,
+  // the vertex sets are unique, so a candidate not certified is not in Del_M.
+  if (D.complete) {
+    for (auto& u : D.undecided)
+      rejected_by_completeness.push_back({u.simplex, {{"kind", "not_intrinsic"},
+                                                      {"simplex", u.simplex},
+                                                      {"by", "completeness"},
+                                                      {"undecided_because", u.reason}}});
+    D.undecided.clear();
+  }
   for (std::size_t k = 0; k < rejected.size(); ++k) {
     if (D.complete) {
       D.rejected.push_back({*rejected_simplex[k], std::move(rejected[k]->witness)});
@@ -381,6 +395,9 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
                                                          "is complete"});
     }
   }
+  D.rejected.insert(D.rejected.end(), rejected_by_completeness.begin(), rejected_by_completeness.end());
+  std::sort(D.rejected.begin(), D.rejected.end(),
+            [](const IntrinsicRejection& a, const IntrinsicRejection& b) { return a.simplex < b.simplex; });
   std::sort(D.undecided.begin(), D.undecided.end(),
             [](const IntrinsicUndecided& a, const IntrinsicUndecided& b) { return a.simplex < b.simplex; });
   D.computed = true;
