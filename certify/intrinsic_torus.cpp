@@ -36,15 +36,17 @@
 // of min_q d_T(x, a(q))^2 - R^2). Equivalently, the lifted simplex is a cell of the Delaunay
 // tessellation DT(P~) with no other point of P~ on its circumsphere (a protected simplex).
 //
-// WHICH q ARE TESTED (the ambient prefilter). For every q with d_T(x, a(q)) <= 2R,
-// d_T(a(q), a(p_0)) <= 3R and per circle the chord is at most the arc:
-// |r_i e(phi_i(q)) - r_i e(phi_i(p_0))| = 2 r_i sin(|dtheta_i| / 2) <= r_i |dtheta_i|, e(t) the
-// unit vector of angle t. With rho_i(p) = |(x_{2i-1}, x_{2i})(p)| and E(p) = |p - pi(p)| =
-// sqrt(sum_i (rho_i(p) - r_i)^2) (pi(p) = (r_i e(phi_i(p)))_i), the triangle inequality in R^N
-// gives |q - p_0| <= E(q) + |pi(q) - pi(p_0)| + E(p_0) <= 2 E_max + sqrt(sum_i r_i^2 dtheta_i^2)
-// <= 2 E_max + 3R. So grid.ball(p_0, r) with r >= 3R + 2 E_max (upper bounds, certified by
-// enclosures) returns every q with d_T(x, a(q)) <= 2R; any other q has d_T(x, a(q))^2 - R^2 >
-// 3R^2, which enters the margin as such. The test of one q: delta_i = phi_i(q) - angle_i(x),
+// WHICH q ARE TESTED (the ambient prefilter). Let X = (r_i e(angle_i(x)))_i in R^N be the point x
+// of M, e(t) the unit vector of angle t, and E(p) = |p - pi(p)| = sqrt(sum_i (rho_i(p) - r_i)^2)
+// with rho_i(p) = |(x_{2i-1}, x_{2i})(p)| (pi(p) = (r_i e(phi_i(p)))_i, so p - pi(p) has the
+// components (rho_i - r_i) e(phi_i)). Per circle the chord is at most the arc:
+// |r_i e(s) - r_i e(t)| = 2 r_i sin(|s - t| / 2) <= r_i |s - t| for the shortest |s - t| <= pi, so
+// |pi(q) - X| <= d_T(x, a(q)). For every q with d_T(x, a(q)) <= 2R the triangle inequality gives
+// |q - X| <= E(q) + |pi(q) - X| <= E_max + 2R, and for the double centre X~ (midpoints of the
+// enclosures of X) |q - X~| <= 2R + E_max + |X - X~|, each term bounded above from enclosures.
+// So grid.ball(X~, that bound) returns every q with d_T(x, a(q)) <= 2R (grid.hpp: every point of
+// the closed ball); any other q has d_T(x, a(q))^2 - R^2 > 3R^2, which enters the margin as such.
+// The test of one q: delta_i = phi_i(q) - angle_i(x),
 // reduced by a multiple of 2 pi near [-pi, pi]; the shortest angle is |delta_i| if certainly
 // <= pi, 2 pi - |delta_i| if certainly >= pi, and otherwise lies in the hull of both (their
 // minimum lies between the minima of the endpoints). All in MPFI enclosures (exact/enclosure.hpp).
@@ -114,7 +116,7 @@ struct Torus {
   std::vector<Enclosure> r, r2;      // radii and their squares
   Enclosure pi{0L}, two_pi{0L};
   Enclosure half_rho_sq{0L};          // (pi min r_i / 2)^2
-  Enclosure two_e_max{0L};            // 2 max_p |p - pi(p)| (upper bound in .upper())
+  Enclosure e_max{0L};                // an upper bound of max_p |p - pi(p)|
   std::vector<std::vector<Enclosure>> phi;  // phi[p][i]
 };
 
@@ -129,10 +131,13 @@ Enclosure reduce(const Torus& T, const Enclosure& d) {
 // Certainly strictly inside (-pi, pi).
 bool strictly_inside(const Torus& T, const Enclosure& d) { return (T.pi - d).is_positive() && (T.pi + d).is_positive(); }
 
-// An enclosure of min_k (d + 2 pi k)^2 for d already reduced near [-pi, pi].
+// An enclosure of min_k (d + 2 pi k)^2 for d reduced near [-pi, pi]: with a = |d|, it is a^2 for
+// a <= pi and (2 pi - a)^2 for pi <= a <= 3 pi (a straddling pi: the hull of both); always in [0, pi^2].
 Enclosure shortest_square(const Torus& T, const Enclosure& d) {
-  Enclosure a = d.is_negative() ? -d : d;  // |d| when d does not contain 0; otherwise d, and |d| < pi
-  if (d.contains_zero() || (T.pi - a).is_positive()) return square(d);
+  if (strictly_inside(T, d)) return square(d);
+  if (d.contains_zero() || !(Enclosure(3L) * T.pi - (d.is_negative() ? -d : d)).is_positive())
+    return hull(Enclosure(0L), square(T.pi));  // not expected (enclosures are tight): the trivial bound
+  const Enclosure a = d.is_negative() ? -d : d;  // |d|, certainly in (0, 3 pi)
   Enclosure other = square(T.two_pi - a);
   if ((a - T.pi).is_positive()) return other;
   return hull(square(d), other);
@@ -144,7 +149,7 @@ struct Outcome {
   std::string reason;
 };
 
-Outcome decide(const Torus& T, const io::PointSet& points, const PointGrid& grid, const std::vector<int>& s) {
+Outcome decide(const Torus& T, const PointGrid& grid, const std::vector<int>& s) {
   const int m = T.m;
   Outcome out;
   const int p0 = s[0];
@@ -208,12 +213,21 @@ Outcome decide(const Torus& T, const io::PointSet& points, const PointGrid& grid
     centre[i] = T.phi[p0][i] + c[i] / T.r[i];
     centre_json.push_back(enclosure_json(centre[i]));
   }
-  // Every q with d_T(x, a(q)) <= 2R is within ambient distance 3R + 2 E_max of p_0 (proof above).
-  const double search = (Enclosure(3L) * R + T.two_e_max).upper();
+  // Every q with d_T(x, a(q)) <= 2R is within ambient distance 2R + E_max + |X - X~| of X~ (proof above).
+  std::vector<double> X;
+  Enclosure deviation2(0L);
+  for (int i = 0; i < m; ++i)
+    for (const Enclosure& e : {T.r[i] * cos(centre[i]), T.r[i] * sin(centre[i])}) {
+      const double mid = 0.5 * e.lower() + 0.5 * e.upper();
+      const Enclosure off = e - Enclosure(mid);
+      deviation2 = deviation2 + square(Enclosure(std::max(-off.lower(), off.upper())));
+      X.push_back(mid);
+    }
+  const double search = (Enclosure(2L) * R + T.e_max + sqrt(deviation2)).upper();
   Enclosure margin = Enclosure(3L) * R2;  // lower bound for the points outside the search ball
   bool tie = false;
   int tie_point = -1;
-  for (int q : grid.ball(points.point(p0), search)) {
+  for (int q : grid.ball(X, search)) {
     if (std::binary_search(s.begin(), s.end(), q)) continue;
     Enclosure d2(0L);
     for (int i = 0; i < m; ++i) d2 = d2 + T.r2[i] * shortest_square(T, reduce(T, T.phi[q][i] - centre[i]));
@@ -318,14 +332,14 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
     }
     e_max = std::max(e_max, sqrt(e2).upper());
   }
-  T.two_e_max = Enclosure(2L) * Enclosure(e_max);
+  T.e_max = Enclosure(e_max);
 
   // Unique candidates in sorted order (compute_intrinsic_delaunay validated them).
   std::vector<std::vector<int>> unique = candidates;
   std::sort(unique.begin(), unique.end());
   unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
   std::vector<Outcome> outcomes(unique.size());
-  parallel_for(unique.size(), threads, [&](std::size_t k, int) { outcomes[k] = decide(T, points, grid, unique[k]); });
+  parallel_for(unique.size(), threads, [&](std::size_t k, int) { outcomes[k] = decide(T, grid, unique[k]); });
 
   std::vector<Outcome*> rejected;
   std::vector<IntrinsicRejection> rejected_by_completeness;
