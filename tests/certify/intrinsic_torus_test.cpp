@@ -119,11 +119,11 @@ Simplices reference_t3(const io::PointSet& P) {
 }
 
 // Squared flat-torus distance between angle vectors (radii 1), in double (test only).
-double torus_d2(const std::vector<double>& a, const std::vector<double>& b) {
+double torus_d2(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& radii) {
   double d2 = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     double d = std::fabs(a[i] - b[i]);
-    d = std::min(d, kTwoPi - d);
+    d = radii[i] * std::min(d, kTwoPi - d);
     d2 += d * d;
   }
   return d2;
@@ -131,14 +131,15 @@ double torus_d2(const std::vector<double>& a, const std::vector<double>& b) {
 
 // Candidates independent of the reference: every point with every m-subset of its k nearest
 // neighbours (flat torus distance, brute force).
-std::vector<std::vector<int>> neighbour_candidates(const io::PointSet& P, int m, int k) {
+std::vector<std::vector<int>> neighbour_candidates(const io::PointSet& P, int m, int k, std::vector<double> radii = {}) {
+  radii.resize(m, 1.0);
   const auto A = angles_of(P);
   const int n = static_cast<int>(A.size());
   std::set<std::vector<int>> C;
   for (int p = 0; p < n; ++p) {
     std::vector<std::pair<double, int>> d;
     for (int q = 0; q < n; ++q)
-      if (q != p) d.push_back({torus_d2(A[p], A[q]), q});
+      if (q != p) d.push_back({torus_d2(A[p], A[q], radii), q});
     std::partial_sort(d.begin(), d.begin() + k, d.end());
     std::vector<int> pick(k, 0);
     std::fill(pick.begin(), pick.begin() + m, 1);
@@ -174,13 +175,14 @@ Simplices certified_set(const IntrinsicDelaunay& D) {
 
 // The empty-ball test of the shortest lifts, in doubles (the test's own, independent of the
 // engine): is q strictly inside the circumcircle of triangle s (T^2, radii 1)?
-bool inside_circumcircle_t2(const std::vector<std::vector<double>>& A, const std::vector<int>& s, int q) {
+bool inside_circumcircle_t2(const std::vector<std::vector<double>>& A, const std::vector<int>& s, int q,
+                            std::array<double, 2> radii = {1, 1}) {
   auto lift = [&](int p) {
     std::array<double, 2> v;
     for (int i = 0; i < 2; ++i) {
       double d = A[p][i] - A[s[0]][i];
       d -= kTwoPi * std::nearbyint(d / kTwoPi);
-      v[i] = d;
+      v[i] = radii[i] * d;
     }
     return v;
   };
@@ -193,7 +195,7 @@ bool inside_circumcircle_t2(const std::vector<std::vector<double>>& A, const std
   double best = 1e300;
   for (int i = -1; i <= 1; ++i)
     for (int j = -1; j <= 1; ++j) {
-      const double dx = x[0] + i * kTwoPi - ux, dy = x[1] + j * kTwoPi - uy;
+      const double dx = x[0] + i * kTwoPi * radii[0] - ux, dy = x[1] + j * kTwoPi * radii[1] - uy;
       best = std::min(best, dx * dx + dy * dy);
     }
   return best < R2 * (1 - 1e-9);
@@ -384,6 +386,37 @@ TEST(IntrinsicTorus, BuiltinSpecAndPointsNearM) {
   ASSERT_TRUE(D.computed) << D.reason;
   EXPECT_TRUE(D.complete) << D.reason;
   EXPECT_EQ(certified_set(D), ref);
+}
+
+// Radii (1, 3/2) on points of the unit circles (off M in the second plane, projected radially),
+// against a brute-force reference in doubles (every triangle among 40 nearest neighbours whose
+// circumcircle of the shortest lifts, in the scaled angle coordinates, is empty): equal,
+// complete, 2n triangles (Euler characteristic 0); the same for the homothetic radii (2, 3).
+TEST(IntrinsicTorus, UnequalRadiiAgreeWithBruteForce) {
+  const io::PointSet P = random_torus(2, 400, 8);
+  const auto A = angles_of(P);
+  const int n = static_cast<int>(P.size());
+  for (const auto& radii : {std::vector<mpq_class>{1, mpq_class(3, 2)}, std::vector<mpq_class>{2, 3}}) {
+    const std::array<double, 2> r{radii[0].get_d(), radii[1].get_d()};
+    const auto near = neighbour_candidates(P, 2, 40, {r[0], r[1]});
+    Simplices ref;
+    for (const auto& s : near) {
+      bool empty = true;
+      for (int q = 0; q < n && empty; ++q)
+        if (!std::binary_search(s.begin(), s.end(), q) && inside_circumcircle_t2(A, s, q, r)) empty = false;
+      if (empty) ref.insert(s);
+    }
+    ASSERT_EQ(ref.size(), 2 * P.size());
+    auto candidates = neighbour_candidates(P, 2, 6, {r[0], r[1]});
+    candidates.insert(candidates.end(), ref.begin(), ref.end());
+    io::ShapeSpec g = unit_circles(2);
+    g.radii = radii;
+    detail::PointGrid grid(P, 2);
+    const IntrinsicDelaunay D = detail::intrinsic_delaunay_flat_torus(g, P, grid, candidates, 2);
+    ASSERT_TRUE(D.computed) << D.reason;
+    EXPECT_TRUE(D.complete) << D.reason;
+    EXPECT_EQ(certified_set(D), ref);
+  }
 }
 
 // (4) T^3 (clifford-torus-3): complete and equal to the periodic 3D Delaunay triangulation.
