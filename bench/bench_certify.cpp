@@ -12,7 +12,8 @@
 // the JSON reports medians of wall-clock and CPU seconds (children's user + system time), their
 // ratio, the certificate's verdict and the fraction of predicate calls the interval filter decided.
 // For checks 11-13 (issue 11) it also reports, from the certificate: the time of covering + Del_RM
-// (times_seconds.restricted_delaunay and restricted_delaunay_cpu, the phase alone) relative to the
+// (times_seconds.restricted_delaunay and restricted_delaunay_cpu, the phase alone; likewise
+// intrinsic_delaunay for checks 14-15) relative to the
 // whole `delcert tangential` run, wall and CPU, with the issue's target (<= 20x at m = 2, <= 40x at
 // m = 3) and whether it is met; check 11's boxes and Krawczyk calls per point and Krawczyk
 // failures; and the verdicts of checks 11, 12 and 13.
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
     const std::string tag = "input-" + std::to_string(k);  // names may hold '/'
     const std::string cx = (dir / (tag + ".complex")).string(), cert = (dir / (tag + ".json")).string();
     const std::size_t n = count_points(in.points);
-    std::vector<double> pw, pc, cw, cc, rw, rc;
+    std::vector<double> pw, pc, cw, cc, rw, rc, iw, ic;
     int verdict_status = -1, producer_status = -1;
     nlohmann::json c;  // the last run's certificate
     std::string cert_error;
@@ -196,6 +197,9 @@ int main(int argc, char** argv) {
         if (times.contains("restricted_delaunay"))
           rw.push_back(times["restricted_delaunay"].get<double>()),
               rc.push_back(times["restricted_delaunay_cpu"].get<double>());
+        if (times.contains("intrinsic_delaunay"))
+          iw.push_back(times["intrinsic_delaunay"].get<double>()),
+              ic.push_back(times["intrinsic_delaunay_cpu"].get<double>());
         cert_error.clear();
       } catch (const std::exception& e) {
         c = nullptr;
@@ -264,6 +268,19 @@ int main(int argc, char** argv) {
     rd["verdicts"] = verdicts;
     if (!summaries.empty()) rd["summaries"] = summaries;  // why a check is not CERTIFIED
     r["restricted"] = rd;
+    // Checks 14-15: Del_M against `delcert tangential` (issue 12's target: <= 40x).
+    nlohmann::json id;
+    id["wall_s"] = median(iw);
+    id["cpu_s"] = median(ic);
+    id["ratio_wall"] = ratio(median(iw), median(pw));
+    id["ratio_cpu"] = ratio(median(ic), median(pc));
+    id["target_ratio"] = 40;
+    for (const char* name : {"intrinsic_delaunay", "restricted_equals_intrinsic"}) {
+      const auto* e = find_check(c, name);
+      id["verdicts"][name] = e ? (*e)["verdict"] : nlohmann::json("absent");
+      if (e && (*e)["verdict"] != "CERTIFIED") id["summaries"][name] = e->value("summary", "");
+    }
+    r["intrinsic"] = id;
     out["results"].push_back(r);
   }
   std::filesystem::remove_all(dir);

@@ -897,6 +897,7 @@ CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const 
                                                                : "Del_RM(P) = Del_M(P) not decided";
   eq.summary = decided + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
                std::to_string(only_rm) + " only restricted, " + std::to_string(only_m) + " only intrinsic)";
+  if (!D.computed) eq.summary = "not decided: Del_M(P) not computed: " + D.reason;
   if (!claimed) {
     eq.details["decision"] = to_string(eq.verdict);
     eq.verdict = Verdict::report;

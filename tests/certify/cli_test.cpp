@@ -26,7 +26,7 @@ TEST(Cli, VerdictLineExitStatusAndCertificate) {
   auto j = nlohmann::json::parse(read_text(out));
   EXPECT_EQ(j["format"], "delcert-certificate v1");
   EXPECT_EQ(j["verdict"], "CERTIFIED");
-  EXPECT_EQ(j["checks"].size(), 13u);
+  EXPECT_EQ(j["checks"].size(), 15u);
   EXPECT_EQ(j["inputs"]["points"]["sha256"].get<std::string>().size(), 64u);
   EXPECT_TRUE(j.contains("times_seconds"));
 

@@ -13,6 +13,7 @@
 #include "io/complex.hpp"
 #include "io/points.hpp"
 #include "io/spec.hpp"
+#include "reference/restricted_delaunay_reference.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -128,6 +129,23 @@ TEST(IntrinsicSphere, RadialScalingChangesDelRMButNotDelM) {
   const IntrinsicDelaunay D1 = del_m(unit, P, std::vector<Simplex>(S0.begin(), S0.end()));
   EXPECT_TRUE(D1.complete) << D1.reason;
   EXPECT_EQ(simplices(D1), S0);
+
+  // Independent reference: on the sphere Del_M = Del_RM, so the test-only reference (CGAL's 3D
+  // Delaunay + exact root counting) on the projections, rounded to doubles (the sample is far from
+  // any tie), must give the same triangles.
+  io::PointSet Q;
+  Q.dimension = 3;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const auto p = P.point(i);
+    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const std::vector<double> x{p[0] / n, p[1] / n, p[2] / n};
+    Q.push_back(x);
+  }
+  const reference::RestrictedDelaunayReference ref = reference::restricted_delaunay_reference(Q, reference::surface_equation(unit));
+  ASSERT_TRUE(ref.decided());
+  std::set<Simplex> truth;
+  for (const auto& t : ref.triangles()) truth.insert({int(t[0]), int(t[1]), int(t[2])});
+  EXPECT_EQ(simplices(D1), truth);
 }
 
 // The cube's vertices project to the cube inscribed in the unit sphere: each square face is four

@@ -106,8 +106,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // The budget, decided (issue 11): the checker is checks 1-10 (~4000 lines) plus the certified
   // restricted Voronoi diagram and checks 11-13 (certify/rvd.*, certify/restricted.*, ~1100 lines),
   // which are part of the checker by design: 5500 lines, a long afternoon's reading. Issue 12
-  // (Del_M) reuses the RVD engine and must fit in this budget or argue for a new one.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 5500) << "certify/ should stay small enough to read whole";
+  // (Del_M, checks 14-15, certify/intrinsic*) does not reuse the RVD engine: on a sphere Del_M is
+  // the hull of the projected points and on a flat torus a periodic Delaunay tessellation, each
+  // decided directly with its own proof (~850 lines, half of them the proofs in comments, cheaper
+  // and sharper than the subdivision would be). New budget: 6500 lines.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 6500) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

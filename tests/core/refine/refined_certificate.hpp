@@ -1,6 +1,8 @@
 // What a certificate of the refiner's output must say (used by the refine tests): every claim and
 // every check of Del_TM CERTIFIED, Del_RM and the covering radius CERTIFIED, and
-// Del_TM(P) = Del_RM(P) decided either way (check 13). The refiner does not yet guarantee the
+// Del_TM(P) = Del_RM(P) decided either way (check 13); Del_M (check 14) CERTIFIED where the spec
+// has a usable closed-form metric, else "not computed", and Del_RM(P) = Del_M(P) (check 15)
+// decided whenever Del_M is. The refiner does not yet guarantee the
 // equality (issue 15), so REFUTED is accepted there, but only with witnesses that re-check here,
 // independently of the certifier: a restricted Voronoi vertex enclosure is a box at which every
 // other point of P is strictly farther than the simplex's points (interval bounds of the squared
@@ -36,8 +38,15 @@ inline void expect_refined_certificate(const nlohmann::json& certificate, const 
   for (const auto& check : certificate.at("checks")) {
     const std::string name = check.at("name"), verdict = check.at("verdict");
     if (verdict == "REPORT") continue;
-    if (name != "tangential_equals_restricted") {
-      EXPECT_EQ(verdict, "CERTIFIED") << name << ": " << check.at("summary");
+    const std::string summary = check.at("summary");
+    const bool no_metric = verdict == "UNDECIDED" && (summary.find("no closed-form geodesic distance") != std::string::npos ||
+                                                      summary.find("not built") != std::string::npos);
+    if (name == "intrinsic_delaunay" && no_metric) continue;
+    if (name == "restricted_equals_intrinsic" && verdict == "UNDECIDED" &&
+        summary.find("Del_M(P) not computed") != std::string::npos)
+      continue;
+    if (name != "tangential_equals_restricted" && name != "restricted_equals_intrinsic") {
+      EXPECT_EQ(verdict, "CERTIFIED") << name << ": " << summary;
       continue;
     }
     EXPECT_TRUE(verdict == "CERTIFIED" || verdict == "REFUTED") << check.at("summary");  // decided
@@ -58,7 +67,7 @@ inline void expect_refined_certificate(const nlohmann::json& certificate, const 
       }
       ++rechecked;
     }
-    std::printf("Del_TM != Del_RM: %s (%d vertex witnesses re-checked)\n",
+    std::printf("%s refuted: %s (%d vertex witnesses re-checked)\n", name.c_str(),
                 check.at("summary").get<std::string>().c_str(), rechecked);
   }
 }
