@@ -236,10 +236,8 @@ IntrinsicDelaunay intrinsic_delaunay_sphere(const io::ShapeSpec& metric, const i
   std::sort(unique.begin(), unique.end());
   unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
 
-  std::vector<Decision> out(unique.size());
-  parallel_for(unique.size(), threads, [&](std::size_t k, int) {
-    const std::vector<int>& simplex = unique[k];
-    Decision& d = out[k];
+  auto decide = [&](const std::vector<int>& simplex) {
+    Decision d;
     const int cside = S.centre_side(simplex);
     double rho = INFINITY;
     if (cside != 0) {
@@ -307,23 +305,108 @@ IntrinsicDelaunay intrinsic_delaunay_sphere(const io::ShapeSpec& metric, const i
                               "simplex's projected points: the cap on the other side is an empty geodesic ball, its "
                               "pole the intrinsic Voronoi vertex"}};
     }
-  });
+    return d;
+  };
+  std::map<std::vector<int>, Decision> decided;
+  auto decide_all = [&](const std::vector<std::vector<int>>& batch) {
+    std::vector<Decision> out(batch.size());
+    parallel_for(batch.size(), threads, [&](std::size_t k, int) { out[k] = decide(batch[k]); });
+    for (std::size_t k = 0; k < batch.size(); ++k) decided.emplace(batch[k], std::move(out[k]));
+  };
+  decide_all(unique);
+
+  // GIFT WRAPPING. The candidates may miss facets (their sources are other complexes). Across a
+  // ridge that lies in one certified facet f = ridge + {a} only, the hull's other facet is
+  // ridge + {q} for the q whose hyperplane leaves every point on a's side: found in floating point
+  // (Jarvis's rule on the normalised points near the ridge), then DECIDED like any candidate. The
+  // floating-point search only proposes; nothing it computes is trusted. Rounds until no new
+  // candidate appears (each round decides at most one new candidate per open ridge).
+  std::vector<std::vector<double>> x(n, std::vector<double>(N));  // normalised projections, approximate
+  for (std::size_t q = 0; q < n; ++q) {
+    double nn = 0;
+    for (int v = 0; v < N; ++v) nn += std::pow(points.point(q)[v] - metric.center[v].get_d(), 2);
+    nn = std::sqrt(nn);
+    for (int v = 0; v < N; ++v) x[q][v] = (points.point(q)[v] - metric.center[v].get_d()) / nn;
+  }
+  auto orient_f = [&](const std::vector<int>& rows) {  // sign of det [[1, x_j]] in doubles
+    std::vector<std::vector<double>> a(N + 1, std::vector<double>(N + 1, 1.0));
+    for (int j = 0; j <= N; ++j)
+      for (int v = 0; v < N; ++v) a[j][v + 1] = x[rows[j]][v];
+    std::vector<const double*> r;
+    for (auto& row : a) r.push_back(row.data());
+    const double det = laplace(r, 0, N + 1);
+    return det > 0 ? 1 : det < 0 ? -1 : 0;
+  };
+  for (int round = 0; round < 64; ++round) {
+    std::map<std::vector<int>, std::vector<int>> count;  // ridge -> opposite vertices in certified facets
+    for (const auto& [simplex, d] : decided) {
+      if (d.kind != Decision::Kind::certified) continue;
+      for (std::size_t drop = 0; drop < simplex.size(); ++drop) {
+        std::vector<int> r;
+        for (std::size_t i = 0; i < simplex.size(); ++i)
+          if (i != drop) r.push_back(simplex[i]);
+        count[r].push_back(simplex[drop]);
+      }
+    }
+    std::set<std::vector<int>> fresh;
+    for (const auto& [ridge, opposite] : count) {
+      if (opposite.size() != 1) continue;
+      const int a = opposite[0];
+      double reach = 0;  // the facet's diameter on the unit sphere (approximate: it only sizes the search)
+      std::vector<int> facet(ridge);
+      facet.push_back(a);
+      for (int i : facet)
+        for (int j : facet) {
+          double d2 = 0;
+          for (int v = 0; v < N; ++v) d2 += (x[i][v] - x[j][v]) * (x[i][v] - x[j][v]);
+          reach = std::max(reach, std::sqrt(d2));
+        }
+      int q = -1;
+      for (double radius = 2 * reach * metric.radius.get_d(); q < 0 && radius < 8 * metric.radius.get_d(); radius *= 2) {
+        std::vector<int> near = grid.ball(points.point(ridge[0]), radius + 2 * delta_max);
+        std::vector<int> rows(ridge);
+        rows.push_back(-1), rows.push_back(-1);
+        for (int r : near) {
+          if (r == a || std::count(ridge.begin(), ridge.end(), r)) continue;
+          if (q < 0) {
+            q = r;
+            continue;
+          }
+          rows[N - 1] = q, rows[N] = a;
+          const int sa = orient_f(rows);
+          rows[N] = r;
+          if (sa != 0 && orient_f(rows) == -sa) q = r;  // r beyond the plane through ridge + q: turn to it
+        }
+        if (q >= 0) {
+          std::vector<int> rows2(ridge);
+          rows2.push_back(q), rows2.push_back(a);
+          if (orient_f(rows2) == 0) q = -1;
+        }
+      }
+      if (q < 0) continue;
+      std::vector<int> candidate(ridge);
+      candidate.push_back(q);
+      std::sort(candidate.begin(), candidate.end());
+      if (!decided.count(candidate)) fresh.insert(candidate);
+    }
+    if (fresh.empty()) break;
+    decide_all(std::vector<std::vector<int>>(fresh.begin(), fresh.end()));
+  }
 
   std::map<std::vector<int>, int> ridges;
-  for (std::size_t k = 0; k < unique.size(); ++k) {
-    const Decision& d = out[k];
+  for (const auto& [simplex, d] : decided) {
     if (d.kind == Decision::Kind::certified) {
-      D.simplices.push_back({unique[k], d.witness});
-      for (std::size_t drop = 0; drop < unique[k].size(); ++drop) {
+      D.simplices.push_back({simplex, d.witness});
+      for (std::size_t drop = 0; drop < simplex.size(); ++drop) {
         std::vector<int> r;
-        for (std::size_t i = 0; i < unique[k].size(); ++i)
-          if (i != drop) r.push_back(unique[k][i]);
+        for (std::size_t i = 0; i < simplex.size(); ++i)
+          if (i != drop) r.push_back(simplex[i]);
         ++ridges[r];
       }
     } else if (d.kind == Decision::Kind::rejected) {
-      D.rejected.push_back({unique[k], d.witness});
+      D.rejected.push_back({simplex, d.witness});
     } else {
-      D.undecided.push_back({unique[k], d.reason});
+      D.undecided.push_back({simplex, d.reason});
     }
   }
   const auto open = std::find_if(ridges.begin(), ridges.end(), [](const auto& r) { return r.second != 2; });

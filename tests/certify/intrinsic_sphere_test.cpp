@@ -102,6 +102,8 @@ TEST(IntrinsicSphere, RadialScalingChangesDelRMButNotDelM) {
   const Certificate c = run_certify(o);
   const CheckEntry& eq = check(c, CheckId::restricted_equals_intrinsic);
   ASSERT_EQ(eq.verdict, Verdict::refuted) << eq.summary;
+  // Del_TM and Del_RM miss some of Del_M's triangles here: gift wrapping completes it.
+  EXPECT_EQ(check(c, CheckId::intrinsic_delaunay).verdict, Verdict::certified) << check(c, CheckId::intrinsic_delaunay).summary;
   int rechecked = 0;
   for (const auto& w : eq.witnesses)
     if (w.contains("intrinsic_witness")) {
@@ -146,6 +148,33 @@ TEST(IntrinsicSphere, RadialScalingChangesDelRMButNotDelM) {
   std::set<Simplex> truth;
   for (const auto& t : ref.triangles()) truth.insert({int(t[0]), int(t[1]), int(t[2])});
   EXPECT_EQ(simplices(D1), truth);
+}
+
+// Gift wrapping: from one certified facet the whole hull is found (each new facet proposed in
+// floating point and then decided like any candidate).
+TEST(IntrinsicSphere, OneFacetGrowsIntoTheWholeComplex) {
+  const io::PointSet F = fibonacci_sphere(200);
+  const io::ManifoldSpec unit = io::read_spec("builtin:sphere-2");
+  const Audit A = audit("builtin:sphere-2", F);
+  Simplex seed = A.complex.simplices[0];
+  std::sort(seed.begin(), seed.end());
+  const IntrinsicDelaunay D = del_m(unit, F, {seed});
+  EXPECT_TRUE(D.complete) << D.reason;
+  EXPECT_EQ(D.simplices.size(), 396u);
+  std::set<Simplex> tm;
+  for (auto s : A.complex.simplices) {
+    std::sort(s.begin(), s.end());
+    tm.insert(s);
+  }
+  EXPECT_EQ(simplices(D), tm);  // Del_TM = Del_M on this sample (check 13 and 15 say the same)
+  // S^3: from one seed too.
+  const io::PointSet S3 = spread_sphere(4, 80, 0.45, 11);
+  const Audit A3 = audit("builtin:sphere-3", S3);
+  Simplex seed3 = A3.complex.simplices[0];
+  std::sort(seed3.begin(), seed3.end());
+  const IntrinsicDelaunay D3 = del_m(io::read_spec("builtin:sphere-3"), S3, {seed3});
+  EXPECT_TRUE(D3.complete) << D3.reason;
+  EXPECT_EQ(D3.simplices.size(), A3.complex.simplices.size());
 }
 
 // The cube's vertices project to the cube inscribed in the unit sphere: each square face is four
