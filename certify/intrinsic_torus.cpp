@@ -93,6 +93,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -350,32 +351,23 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
   }
 
   // GIFT WRAPPING. The candidates may miss cells (their sources are other complexes). Across a
-  // ridge (an (m-1)-face) that lies in one certified simplex f = ridge + {a} only, the periodic
-  // Delaunay cell on the other side is ridge + {q} for the q beyond the ridge's hyperplane whose
-  // circumcentre lies farthest back along the ridge's bisector line toward a (the pivot of the
-  // empty ball about the ridge): found in floating point on the shortest lifts relative to the
-  // ridge's first vertex, then DECIDED like any candidate. The floating-point search only
-  // proposes; nothing it computes is trusted (decide() and the completeness proof above do not
-  // depend on where a candidate came from). Rounds until no new candidate appears (at most one
-  // new candidate per open ridge per round, 64 rounds). Deterministic: the proposal for a ridge
-  // depends only on the ridge and a, ties broken by the smaller index.
+  // ridge in one certified simplex ridge + {a} only, the cell on the other side is ridge + {q} for
+  // the q beyond the ridge's hyperplane whose circumcentre lies farthest back toward a along the
+  // ridge's normal (the empty-ball pivot): found in floating point on the shortest lifts relative
+  // to the ridge's first vertex, then DECIDED like any candidate (nothing the search computes is
+  // trusted; decide() and completeness ignore where a candidate came from). Rounds until no new
+  // candidate appears (at most 64). Deterministic: ties go to the smaller index.
   std::vector<std::vector<double>> ang(n, std::vector<double>(m));  // approximate angles
-  std::vector<double> rd(m);
-  double rmin_d = rmin.get_d();
-  for (int i = 0; i < m; ++i) rd[i] = metric.radii[i].get_d();
   for (std::size_t p = 0; p < n; ++p)
     for (int i = 0; i < m; ++i) ang[p][i] = std::atan2(points.point(p)[2 * i + 1], points.point(p)[2 * i]);
   auto lift = [&](int base, int q) {  // shortest lift of a(q) - a(base), approximate
     std::vector<double> w(m);
-    for (int i = 0; i < m; ++i) w[i] = rd[i] * std::remainder(ang[q][i] - ang[base][i], 2 * M_PI);
+    for (int i = 0; i < m; ++i) w[i] = metric.radii[i].get_d() * std::remainder(ang[q][i] - ang[base][i], 2 * M_PI);
     return w;
   };
   auto dot = [&](const std::vector<double>& x, const std::vector<double>& y) {
-    double v = 0;
-    for (int i = 0; i < m; ++i) v += x[i] * y[i];
-    return v;
+    return std::inner_product(x.begin(), x.end(), y.begin(), 0.0);
   };
-  const double e_max_d = T.e_max.upper();
   auto propose = [&](const std::vector<int>& ridge, int a) -> int {
     const int b = ridge[0];
     std::vector<std::vector<double>> u;  // u_1..u_{m-1}
@@ -411,36 +403,34 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
     const double R0sq = dot(c0, c0);
     // Unit normal pointing away from a: Gram-Schmidt of a's lift against the ridge's directions.
     std::vector<std::vector<double>> e;
-    for (const auto& v : u) {
-      std::vector<double> w = v;
+    auto orth = [&](std::vector<double> w) {
       for (const auto& f : e) {
         const double t = dot(w, f);
         for (int i = 0; i < m; ++i) w[i] -= t * f[i];
       }
+      return w;
+    };
+    for (const auto& v : u) {
+      std::vector<double> w = orth(v);
       const double nw = std::sqrt(dot(w, w));
       if (!(nw > 0)) return -1;
       for (double& x : w) x /= nw;
       e.push_back(w);
     }
-    std::vector<double> nrm = lift(b, a);
-    for (const auto& f : e) {
-      const double t = dot(nrm, f);
-      for (int i = 0; i < m; ++i) nrm[i] -= t * f[i];
-    }
+    std::vector<double> nrm = orth(lift(b, a));
     const double nn = std::sqrt(dot(nrm, nrm));
     if (!(nn > 0)) return -1;
     for (double& x : nrm) x /= -nn;
-    double reach = 0;  // the ridge's size, sizes the first search
+    double reach = nn;  // sizes the first search
     for (int j = 0; j < k; ++j) reach = std::max(reach, std::sqrt(dot(u[j], u[j])));
-    reach = std::max(reach, nn);
-    const double rho = M_PI * rmin_d;
+    const double rho = M_PI * rmin.get_d();
     for (double radius = 2 * reach; radius > 0; radius *= 2) {
       const double geo = std::min(radius, rho);
       // Ambient chord <= geodesic distance, each point within e_max of M: every q at geodesic
       // distance <= geo from b is in this ambient ball (used only to size the proposal search).
       int best = -1;
-      double best_t = 0, best_reach = 0;
-      for (int q : grid.ball(points.point(b), geo + 2 * e_max_d + 1e-9 * geo)) {
+      double best_t = 0;
+      for (int q : grid.ball(points.point(b), geo + 2 * T.e_max.upper() + 1e-9 * geo)) {
         if (q == a || std::count(ridge.begin(), ridge.end(), q)) continue;
         std::vector<double> w = lift(b, q);
         for (int i = 0; i < m; ++i) w[i] -= c0[i];
@@ -453,8 +443,7 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
         // The circumball of ridge + {best}: centre c0 + t nrm; it lies in the searched ball?
         std::vector<double> cc(c0);
         for (int i = 0; i < m; ++i) cc[i] += best_t * nrm[i];
-        best_reach = std::sqrt(dot(cc, cc)) + std::sqrt(R0sq + best_t * best_t);
-        if (best_reach <= geo || geo >= rho) return best;
+        if (std::sqrt(dot(cc, cc)) + std::sqrt(R0sq + best_t * best_t) <= geo || geo >= rho) return best;
       }
       if (geo >= rho) return -1;
     }
