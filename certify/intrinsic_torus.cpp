@@ -93,6 +93,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -335,23 +337,156 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
   T.e_max = Enclosure(e_max);
 
   // Unique candidates in sorted order (compute_intrinsic_delaunay validated them).
-  std::vector<std::vector<int>> unique = candidates;
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  std::vector<Outcome> outcomes(unique.size());
-  parallel_for(unique.size(), threads, [&](std::size_t k, int) { outcomes[k] = decide(T, grid, unique[k]); });
+  std::map<std::vector<int>, Outcome> decided;
+  auto decide_all = [&](const std::vector<std::vector<int>>& batch) {
+    std::vector<Outcome> outs(batch.size());
+    parallel_for(batch.size(), threads, [&](std::size_t k, int) { outs[k] = decide(T, grid, batch[k]); });
+    for (std::size_t k = 0; k < batch.size(); ++k) decided.emplace(batch[k], std::move(outs[k]));
+  };
+  {
+    std::vector<std::vector<int>> unique = candidates;
+    std::sort(unique.begin(), unique.end());
+    unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+    decide_all(unique);
+  }
+
+  // GIFT WRAPPING. The candidates may miss cells (their sources are other complexes). Across a
+  // ridge in one certified simplex ridge + {a} only, the cell on the other side is ridge + {q} for
+  // the q beyond the ridge's hyperplane whose circumcentre lies farthest back toward a along the
+  // ridge's normal (the empty-ball pivot): found in floating point on the shortest lifts relative
+  // to the ridge's first vertex, then DECIDED like any candidate (nothing the search computes is
+  // trusted; decide() and completeness ignore where a candidate came from). Rounds until no new
+  // candidate appears (at most 64). Deterministic: ties go to the smaller index.
+  std::vector<std::vector<double>> ang(n, std::vector<double>(m));  // approximate angles
+  for (std::size_t p = 0; p < n; ++p)
+    for (int i = 0; i < m; ++i) ang[p][i] = std::atan2(points.point(p)[2 * i + 1], points.point(p)[2 * i]);
+  auto lift = [&](int base, int q) {  // shortest lift of a(q) - a(base), approximate
+    std::vector<double> w(m);
+    for (int i = 0; i < m; ++i) w[i] = metric.radii[i].get_d() * std::remainder(ang[q][i] - ang[base][i], 2 * M_PI);
+    return w;
+  };
+  auto dot = [&](const std::vector<double>& x, const std::vector<double>& y) {
+    return std::inner_product(x.begin(), x.end(), y.begin(), 0.0);
+  };
+  auto propose = [&](const std::vector<int>& ridge, int a) -> int {
+    const int b = ridge[0];
+    std::vector<std::vector<double>> u;  // u_1..u_{m-1}
+    for (int j = 1; j < m; ++j) u.push_back(lift(b, ridge[j]));
+    // Circumcentre c0 of the ridge's lifts in their affine hull: c0 = sum beta_k u_k with
+    // sum_k 2 (u_j . u_k) beta_k = |u_j|^2 (Gaussian elimination with partial pivoting).
+    const int k = m - 1;
+    std::vector<std::vector<double>> G(k, std::vector<double>(k + 1));
+    for (int j = 0; j < k; ++j) {
+      for (int l = 0; l < k; ++l) G[j][l] = 2 * dot(u[j], u[l]);
+      G[j][k] = dot(u[j], u[j]);
+    }
+    for (int col = 0; col < k; ++col) {
+      int best = col;
+      for (int row = col + 1; row < k; ++row)
+        if (std::fabs(G[row][col]) > std::fabs(G[best][col])) best = row;
+      std::swap(G[col], G[best]);
+      if (G[col][col] == 0) return -1;
+      for (int row = col + 1; row < k; ++row) {
+        const double f = G[row][col] / G[col][col];
+        for (int l = col; l <= k; ++l) G[row][l] -= f * G[col][l];
+      }
+    }
+    std::vector<double> beta(k);
+    for (int j = k - 1; j >= 0; --j) {
+      double v = G[j][k];
+      for (int l = j + 1; l < k; ++l) v -= G[j][l] * beta[l];
+      beta[j] = v / G[j][j];
+    }
+    std::vector<double> c0(m, 0.0);
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < m; ++i) c0[i] += beta[j] * u[j][i];
+    const double R0sq = dot(c0, c0);
+    // Unit normal pointing away from a: Gram-Schmidt of a's lift against the ridge's directions.
+    std::vector<std::vector<double>> e;
+    auto orth = [&](std::vector<double> w) {
+      for (const auto& f : e) {
+        const double t = dot(w, f);
+        for (int i = 0; i < m; ++i) w[i] -= t * f[i];
+      }
+      return w;
+    };
+    for (const auto& v : u) {
+      std::vector<double> w = orth(v);
+      const double nw = std::sqrt(dot(w, w));
+      if (!(nw > 0)) return -1;
+      for (double& x : w) x /= nw;
+      e.push_back(w);
+    }
+    std::vector<double> nrm = orth(lift(b, a));
+    const double nn = std::sqrt(dot(nrm, nrm));
+    if (!(nn > 0)) return -1;
+    for (double& x : nrm) x /= -nn;
+    double reach = nn;  // sizes the first search
+    for (int j = 0; j < k; ++j) reach = std::max(reach, std::sqrt(dot(u[j], u[j])));
+    const double rho = M_PI * rmin.get_d();
+    for (double radius = 2 * reach; radius > 0; radius *= 2) {
+      const double geo = std::min(radius, rho);
+      // Ambient chord <= geodesic distance, each point within e_max of M: every q at geodesic
+      // distance <= geo from b is in this ambient ball (used only to size the proposal search).
+      int best = -1;
+      double best_t = 0;
+      for (int q : grid.ball(points.point(b), geo + 2 * T.e_max.upper() + 1e-9 * geo)) {
+        if (q == a || std::count(ridge.begin(), ridge.end(), q)) continue;
+        std::vector<double> w = lift(b, q);
+        for (int i = 0; i < m; ++i) w[i] -= c0[i];
+        const double h = dot(w, nrm);
+        if (!(h > 0)) continue;
+        const double t = (dot(w, w) - R0sq) / (2 * h);
+        if (best < 0 || t < best_t || (t == best_t && q < best)) best = q, best_t = t;
+      }
+      if (best >= 0) {
+        // The circumball of ridge + {best}: centre c0 + t nrm; it lies in the searched ball?
+        std::vector<double> cc(c0);
+        for (int i = 0; i < m; ++i) cc[i] += best_t * nrm[i];
+        if (std::sqrt(dot(cc, cc)) + std::sqrt(R0sq + best_t * best_t) <= geo || geo >= rho) return best;
+      }
+      if (geo >= rho) return -1;
+    }
+    return -1;
+  };
+  for (int round = 0; round < 64; ++round) {
+    std::map<std::vector<int>, std::vector<int>> count;  // ridge -> opposite vertices in certified simplices
+    for (const auto& [simplex, o] : decided) {
+      if (o.kind != Outcome::Kind::certified) continue;
+      for (int drop = 0; drop <= m; ++drop) {
+        std::vector<int> r;
+        for (int j = 0; j <= m; ++j)
+          if (j != drop) r.push_back(simplex[j]);
+        count[r].push_back(simplex[drop]);
+      }
+    }
+    std::vector<std::pair<std::vector<int>, int>> open;
+    for (const auto& [ridge, opposite] : count)
+      if (opposite.size() == 1) open.emplace_back(ridge, opposite[0]);
+    std::vector<int> proposal(open.size(), -1);
+    parallel_for(open.size(), threads, [&](std::size_t k, int) { proposal[k] = propose(open[k].first, open[k].second); });
+    std::set<std::vector<int>> fresh;
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      if (proposal[k] < 0) continue;
+      std::vector<int> candidate(open[k].first);
+      candidate.push_back(proposal[k]);
+      std::sort(candidate.begin(), candidate.end());
+      if (!decided.count(candidate)) fresh.insert(candidate);
+    }
+    if (fresh.empty()) break;
+    decide_all(std::vector<std::vector<int>>(fresh.begin(), fresh.end()));
+  }
 
   std::vector<Outcome*> rejected;
   std::vector<IntrinsicRejection> rejected_by_completeness;
   std::vector<const std::vector<int>*> rejected_simplex;
-  for (std::size_t k = 0; k < unique.size(); ++k) {
-    Outcome& o = outcomes[k];
+  for (auto& [simplex, o] : decided) {
     if (o.kind == Outcome::Kind::certified)
-      D.simplices.push_back({unique[k], std::move(o.witness)});
+      D.simplices.push_back({simplex, std::move(o.witness)});
     else if (o.kind == Outcome::Kind::undecided)
-      D.undecided.push_back({unique[k], o.reason});
+      D.undecided.push_back({simplex, o.reason});
     else
-      rejected.push_back(&o), rejected_simplex.push_back(&unique[k]);
+      rejected.push_back(&o), rejected_simplex.push_back(&simplex);
   }
 
   // Completeness (the proof at the top): nonempty, distinct vertex sets (unique above), every

@@ -267,12 +267,11 @@ TEST(IntrinsicTorus, MutantsAreNeverCertifiedComplete) {
   std::vector<std::vector<int>> missing(ref.begin(), ref.end());
   const std::vector<int> dropped = missing[37];
   missing.erase(missing.begin() + 37);
+  // A missing cell is found again by gift wrapping (proposed across its open edges, decided).
   const IntrinsicDelaunay D1 = run(P, 2, missing);
   ASSERT_TRUE(D1.computed);
-  EXPECT_FALSE(D1.complete);
-  EXPECT_NE(D1.reason.find("closed pseudomanifold"), std::string::npos) << D1.reason;
-  EXPECT_EQ(D1.simplices.size(), ref.size() - 1);
-  EXPECT_FALSE(certified_set(D1).count(dropped));
+  EXPECT_TRUE(D1.complete) << D1.reason;
+  EXPECT_EQ(certified_set(D1), ref);
 
   // A non-Delaunay triangle: a flip of a Delaunay edge (the two apexes and one edge vertex).
   std::vector<int> bad;
@@ -301,13 +300,13 @@ TEST(IntrinsicTorus, MutantsAreNeverCertifiedComplete) {
   EXPECT_TRUE(inside_circumcircle_t2(A, bad, q));
   EXPECT_EQ(certified_set(D2), ref);
 
-  missing.push_back(bad);  // incomplete: the same rejection is only UNDECIDED
+  missing.push_back(bad);  // the dropped cell is recovered, so the rejection stands
   const IntrinsicDelaunay D3 = run(P, 2, missing);
-  EXPECT_FALSE(D3.complete);
-  EXPECT_TRUE(D3.rejected.empty());
-  ASSERT_EQ(D3.undecided.size(), 1u);
-  EXPECT_EQ(D3.undecided[0].simplex, bad);
-  EXPECT_NE(D3.undecided[0].reason.find("strictly inside"), std::string::npos);
+  EXPECT_TRUE(D3.complete) << D3.reason;
+  ASSERT_EQ(D3.rejected.size(), 1u);
+  EXPECT_EQ(D3.rejected[0].simplex, bad);
+  EXPECT_EQ(certified_set(D3), ref);
+  EXPECT_TRUE(certified_set(D3).count(dropped));
 
   // Duplicate candidates are decided once.
   std::vector<std::vector<int>> twice(ref.begin(), ref.end());
@@ -355,6 +354,19 @@ TEST(IntrinsicTorus, ExactTiesAreUndecided) {
     EXPECT_EQ(D.undecided.size(), candidates.size());
     for (const auto& u : D.undecided)
       EXPECT_NE(u.reason.find("not protected"), std::string::npos) << u.reason;
+    if (k != 8) continue;
+    // Incomplete (nothing certified, so nothing to wrap around): a triangle with a grid point
+    // strictly inside its circumcircle is only UNDECIDED, with the witness in the reason.
+    auto with_bad = candidates;
+    const std::vector<int> bad{0, 2, 16};  // (0, 0), (0, 2), (2, 0): (1, 0) at distance 1 < sqrt 2
+    with_bad.push_back(bad);
+    const IntrinsicDelaunay E = run(P, 2, with_bad);
+    EXPECT_FALSE(E.complete);
+    EXPECT_TRUE(E.rejected.empty());
+    EXPECT_TRUE(E.simplices.empty());
+    const auto it = std::find_if(E.undecided.begin(), E.undecided.end(), [&](const auto& u) { return u.simplex == bad; });
+    ASSERT_NE(it, E.undecided.end());
+    EXPECT_NE(it->reason.find("strictly inside"), std::string::npos) << it->reason;
   }
 }
 
@@ -433,6 +445,41 @@ TEST(IntrinsicTorus, T3AgreesWithPeriodicDelaunay) {
   EXPECT_EQ(certified_set(D), ref);
   EXPECT_TRUE(D.undecided.empty());
   EXPECT_GT(D.rejected.size(), 0u);
+}
+
+// Gift wrapping (issue 12): from ONE certified seed simplex the certified set grows into the whole
+// periodic Delaunay tessellation, complete (T^2 and T^3, 400 points each).
+TEST(IntrinsicTorus, OneSeedGrowsIntoTheWholeComplex) {
+  for (int m : {2, 3}) {
+    const io::PointSet P = random_torus(m, 400, 1000 + m);
+    const Simplices ref = m == 2 ? reference_t2(P) : reference_t3(P);
+    const std::vector<int> seed = *std::next(ref.begin(), static_cast<long>(ref.size() / 2));
+    for (int threads : {1, 3}) {
+      const IntrinsicDelaunay D = run(P, m, {seed}, threads);
+      ASSERT_TRUE(D.computed) << D.reason;
+      EXPECT_TRUE(D.complete) << "m = " << m << ": " << D.reason;
+      EXPECT_EQ(certified_set(D), ref) << "m = " << m;
+      EXPECT_TRUE(D.undecided.empty());
+    }
+  }
+}
+
+// Gift wrapping completes a sampled candidate set that misses cells (nearest-neighbour triangles
+// and tetrahedra from too few neighbours).
+TEST(IntrinsicTorus, WrappingCompletesCandidatesThatMissCells) {
+  for (int m : {2, 3}) {
+    const io::PointSet P = random_torus(m, 300, 77 + m);
+    const Simplices ref = m == 2 ? reference_t2(P) : reference_t3(P);
+    const auto candidates = neighbour_candidates(P, m, m + 1);
+    const Simplices given(candidates.begin(), candidates.end());
+    const auto missed = std::count_if(ref.begin(), ref.end(), [&](const auto& s) { return !given.count(s); });
+    ASSERT_GT(missed, 0) << "m = " << m << ": the candidates must miss cells for this test";
+    const IntrinsicDelaunay D = run(P, m, candidates);
+    ASSERT_TRUE(D.computed) << D.reason;
+    EXPECT_TRUE(D.complete) << "m = " << m << ": " << D.reason;
+    EXPECT_EQ(certified_set(D), ref) << "m = " << m;
+    EXPECT_TRUE(D.undecided.empty());
+  }
 }
 
 }  // namespace
