@@ -251,8 +251,8 @@ class Parser {
     for (;;) {
       skip();
       std::size_t at = pos_;
-      if (accept('+')) p = p + term();
-      else if (accept('-')) p = p - term();
+      if (accept('+')) p += term();
+      else if (accept('-')) p += -term();
       else return p;
       check_size(p, at);
     }
@@ -438,6 +438,37 @@ Polynomial Polynomial::operator+(const Polynomial& o) const {
   for (auto& t : r.terms_) t.monomial.exponents.resize(r.num_vars_, 0);
   r.normalize();
   return r;
+}
+
+Polynomial& Polynomial::operator+=(Polynomial&& o) {
+  const int n = std::max(num_vars_, o.num_vars_);
+  num_vars_ = n;
+  for (auto& t : terms_) t.monomial.exponents.resize(n, 0);
+  for (auto& t : o.terms_) t.monomial.exponents.resize(n, 0);
+  auto decreasing = [](const Term& a, const Term& b) { return a.monomial > b.monomial; };
+  const bool sorted = std::is_sorted(terms_.begin(), terms_.end(), decreasing) &&
+                      std::is_sorted(o.terms_.begin(), o.terms_.end(), decreasing);
+  const std::size_t mid = terms_.size();
+  terms_.insert(terms_.end(), std::make_move_iterator(o.terms_.begin()), std::make_move_iterator(o.terms_.end()));
+  o.terms_.clear();
+  if (!sorted) {
+    normalize();
+    return *this;
+  }
+  std::inplace_merge(terms_.begin(), terms_.begin() + static_cast<std::ptrdiff_t>(mid), terms_.end(), decreasing);
+  std::size_t w = 0;  // merge equal monomials (adjacent now) and drop zero coefficients, in place
+  for (std::size_t r = 0; r < terms_.size(); ++r) {
+    if (w > 0 && terms_[w - 1].monomial == terms_[r].monomial) {
+      terms_[w - 1].coefficient += terms_[r].coefficient;
+      continue;
+    }
+    if (w > 0 && terms_[w - 1].coefficient == 0) --w;
+    if (w != r) terms_[w] = std::move(terms_[r]);
+    ++w;
+  }
+  if (w > 0 && terms_[w - 1].coefficient == 0) --w;
+  terms_.erase(terms_.begin() + static_cast<std::ptrdiff_t>(w), terms_.end());
+  return *this;
 }
 
 Polynomial Polynomial::operator-() const { return scaled(mpq_class(-1)); }

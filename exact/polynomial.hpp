@@ -91,6 +91,9 @@ class Polynomial {
 
   // Multiplication and powers throw std::overflow_error rather than let an exponent wrap.
   Polynomial operator+(const Polynomial& o) const;
+  // In place, consuming o: a linear merge when both are normalised (always, for polynomials built
+  // by this class), so that parsing a sum of k terms costs O(k^2) moves, not O(k^2 log k) copies.
+  Polynomial& operator+=(Polynomial&& o);
   Polynomial operator-(const Polynomial& o) const;
   Polynomial operator*(const Polynomial& o) const;
   Polynomial operator-() const;
