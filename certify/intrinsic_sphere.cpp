@@ -146,7 +146,8 @@ struct Sphere {
   double circumradius_upper(const std::vector<int>& simplex) const {
     exact::UpwardRounding up;
     const int k = N - 1;  // m: the simplex's dimension
-    const IntervalNumber R(exact::enclose(r).lo, exact::enclose(r).hi);
+    const exact::Interval re = exact::enclose(r);
+    const IntervalNumber R(re.lo, re.hi);
     std::vector<std::vector<IntervalNumber>> a(N, std::vector<IntervalNumber>(N));
     for (int j = 0; j < N; ++j)
       for (int v = 0; v < N; ++v) a[j][v] = R * ui[simplex[j]][v] / ni[simplex[j]];
@@ -266,7 +267,7 @@ IntrinsicDelaunay intrinsic_delaunay_sphere(const io::ShapeSpec& metric, const i
       if (side == Side::unknown && unknown < 0) unknown = q;
     }
     int outside = -1;  // a point not tested: strictly on the centre's side (proof above)
-    if (std::isfinite(rho) && tested.size() + 0 < n) {
+    if (std::isfinite(rho) && tested.size() < n) {
       std::size_t t = 0;
       for (int q = 0; q < static_cast<int>(n); ++q) {
         while (t < tested.size() && tested[t] < q) ++t;
