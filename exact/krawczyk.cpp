@@ -17,33 +17,41 @@ namespace delcert::exact {
 
 using detail::IA;
 
+// A polynomial with the enclosures of its coefficients, prepared once and shared (immutable)
+// between the systems that hold it (SquareSystem(head, tail) shares the head's rows).
+struct Prepared {
+  Polynomial p;
+  std::vector<Interval> coef;
+};
+using PreparedPtr = std::shared_ptr<const Prepared>;
+
 // A square system is the parametric system with no parameters (m = 0): one implementation.
 struct SquareSystem::Impl {
-  int n = 0;                                  // equations and unknowns
-  int m = 0;                                  // parameters: variables 1..m of every equation
-  std::vector<Polynomial> f;                  // in m + n variables (u, x)
-  std::vector<std::vector<Interval>> f_coef;  // enclosures of the coefficients
-  std::vector<Polynomial> df;                 // n x n row-major: d f_i / d x_j (unknowns)
-  std::vector<std::vector<Interval>> df_coef;
-  std::vector<Polynomial> du;                 // n x m row-major: d f_i / d u_a (parameters)
-  std::vector<std::vector<Interval>> du_coef;
+  int n = 0;                // equations and unknowns
+  int m = 0;                // parameters: variables 1..m of every equation
+  std::vector<PreparedPtr> f;   // in m + n variables (u, x)
+  std::vector<PreparedPtr> df;  // n x n row-major: d f_i / d x_j (unknowns)
+  std::vector<PreparedPtr> du;  // n x m row-major: d f_i / d u_a (parameters)
 };
 
 using detail::coefficient_enclosures;
-using detail::evaluate;
 using detail::finite;
 
 namespace {
 
-// Prepares n equations in m + n variables (the first m are the parameters). `what` names the
-// system in error messages.
-std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> equations, int m, const char* what) {
-  auto impl = std::make_shared<SquareSystem::Impl>();
-  const int n = static_cast<int>(equations.size());
+PreparedPtr prepare(Polynomial p) {
+  auto coef = coefficient_enclosures(p);
+  return std::make_shared<const Prepared>(Prepared{std::move(p), std::move(coef)});
+}
+
+IA evaluate(const PreparedPtr& p, std::span<const IA> x) { return detail::evaluate(p->p, p->coef, x); }
+
+// Checks n equations in `vars` variables; `what` names the system in error messages.
+void check_shape(const std::vector<Polynomial>& equations, int n, int m, const char* what) {
   if (n < 1) throw std::invalid_argument(std::string("a ") + what + " needs at least one equation");
   if (m < 0) throw std::invalid_argument(std::string("a ") + what + " needs a non-negative number of parameters");
   const int vars = m + n;
-  for (int i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < equations.size(); ++i)
     if (equations[i].num_variables() != vars && !equations[i].is_zero())
       throw std::invalid_argument(std::string(what) + ": equation " + std::to_string(i + 1) + " has " +
                                   std::to_string(equations[i].num_variables()) + " variables, expected " +
@@ -51,24 +59,32 @@ std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> eq
                                   (m == 0 ? std::string(" (as many as equations)")
                                           : " (" + std::to_string(m) + " parameters + " + std::to_string(n) +
                                                 " unknowns)"));
+}
+
+// Prepares n equations in m + n variables (the first m are the parameters). `what` names the
+// system in error messages.
+std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> equations, int m, const char* what) {
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  const int n = static_cast<int>(equations.size());
+  check_shape(equations, n, m, what);
+  const int vars = m + n;
   impl->n = n;
   impl->m = m;
-  impl->f = std::move(equations);
-  for (auto& p : impl->f) {
+  for (auto& p : equations) {
     if (p.num_variables() != vars) p = Polynomial(vars);  // the zero polynomial, over m + n variables
-    impl->f_coef.push_back(coefficient_enclosures(p));
+    impl->f.push_back(prepare(std::move(p)));
   }
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      impl->df.push_back(impl->f[i].derivative(m + j));
-      impl->df_coef.push_back(coefficient_enclosures(impl->df.back()));
-    }
+    for (int j = 0; j < n; ++j) impl->df.push_back(prepare(impl->f[i]->p.derivative(m + j)));
   for (int i = 0; i < n; ++i)
-    for (int a = 0; a < m; ++a) {
-      impl->du.push_back(impl->f[i].derivative(a));
-      impl->du_coef.push_back(coefficient_enclosures(impl->du.back()));
-    }
+    for (int a = 0; a < m; ++a) impl->du.push_back(prepare(impl->f[i]->p.derivative(a)));
   return impl;
+}
+
+std::vector<Polynomial> polynomials(const std::vector<PreparedPtr>& f) {
+  std::vector<Polynomial> out;
+  for (const auto& p : f) out.push_back(p->p);
+  return out;
 }
 
 }  // namespace
@@ -76,15 +92,38 @@ std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> eq
 SquareSystem::SquareSystem(std::vector<Polynomial> equations)
     : impl_(make_system(std::move(equations), 0, "square system")) {}
 
+SquareSystem::SquareSystem(const ParametricSystem& head, std::vector<Polynomial> tail) {
+  const SquareSystem::Impl& H = head.impl();
+  const int n = H.n + static_cast<int>(tail.size()), vars = H.m + H.n;
+  if (n != vars)
+    throw std::invalid_argument("square system: " + std::to_string(H.n) + " + " + std::to_string(tail.size()) +
+                                " equations in " + std::to_string(vars) + " variables");
+  check_shape(tail, n, 0, "square system");
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  impl->n = n;
+  impl->f = H.f;
+  // Row i of the head: its parameters' derivatives first, then its unknowns' (variable order).
+  for (int i = 0; i < H.n; ++i) {
+    for (int a = 0; a < H.m; ++a) impl->df.push_back(H.du[i * H.m + a]);
+    for (int j = 0; j < H.n; ++j) impl->df.push_back(H.df[i * H.n + j]);
+  }
+  for (auto& p : tail) {
+    if (p.num_variables() != vars) p = Polynomial(vars);
+    impl->f.push_back(prepare(std::move(p)));
+    for (int j = 0; j < n; ++j) impl->df.push_back(prepare(impl->f.back()->p.derivative(j)));
+  }
+  impl_ = std::move(impl);
+}
+
 ParametricSystem::ParametricSystem(std::vector<Polynomial> equations, int num_parameters)
     : impl_(make_system(std::move(equations), num_parameters, "parametric system")) {}
 
 int ParametricSystem::size() const { return impl_->n; }
 int ParametricSystem::num_parameters() const { return impl_->m; }
-const std::vector<Polynomial>& ParametricSystem::equations() const { return impl_->f; }
+std::vector<Polynomial> ParametricSystem::equations() const { return polynomials(impl_->f); }
 
 int SquareSystem::size() const { return impl_->n; }
-const std::vector<Polynomial>& SquareSystem::equations() const { return impl_->f; }
+std::vector<Polynomial> SquareSystem::equations() const { return polynomials(impl_->f); }
 
 std::string_view to_string(RootStatus status) {
   switch (status) {
@@ -130,7 +169,7 @@ bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box
     }
     // G(U, y): plain interval evaluation ...
     for (int i = 0; i < n; ++i) {
-      fy[i] = evaluate(S.f[i], S.f_coef[i], ys.span());
+      fy[i] = evaluate(S.f[i], ys.span());
       ok = ok && finite(fy[i]);
     }
     // ... intersected with the centred (mean-value) form G(u0, y) + J_u(U, y) (U - u0): for each
@@ -141,9 +180,9 @@ bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box
       std::copy(ys.begin(), ys.end(), zs.begin());
       for (int a = 0; a < m; ++a) zs[a] = IA(u0[a]);
       for (int i = 0; i < n; ++i) {
-        IA c = evaluate(S.f[i], S.f_coef[i], zs.span());
+        IA c = evaluate(S.f[i], zs.span());
         for (int a = 0; a < m; ++a)
-          c = c + evaluate(S.du[i * m + a], S.du_coef[i * m + a], ys.span()) * (ys[a] - IA(u0[a]));
+          c = c + evaluate(S.du[i * m + a], ys.span()) * (ys[a] - IA(u0[a]));
         if (!finite(c)) continue;  // the plain form alone is still an enclosure
         const double lo = std::max(c.inf(), fy[i].inf()), hi = std::min(c.sup(), fy[i].sup());
         if (!(lo <= hi)) return false;
@@ -152,7 +191,7 @@ bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box
     }
     // J_x(U, X): encloses J_x(u, x) for every u in U and x in X.
     for (int i = 0; i < n * n; ++i) {
-      jx[i] = evaluate(S.df[i], S.df_coef[i], xs.span());
+      jx[i] = evaluate(S.df[i], xs.span());
       ok = ok && finite(jx[i]);
     }
   }

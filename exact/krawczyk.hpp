@@ -55,14 +55,22 @@
 
 namespace delcert::exact {
 
+class ParametricSystem;
+
 // n polynomials in n variables, with their exact partial derivatives, prepared for interval
 // evaluation. Immutable, cheap to copy, thread-safe to share.
 class SquareSystem {
  public:
   // Throws std::invalid_argument unless there are n >= 1 polynomials in n variables.
   explicit SquareSystem(std::vector<Polynomial> equations);
+  // The system of head's n equations, its m parameters and n unknowns all taken as unknowns (in
+  // that variable order), followed by the m equations of `tail` in those m + n variables. The
+  // head's prepared rows and derivatives are shared, not recomputed (the restricted Voronoi
+  // vertex systems of one cell all start with the chart's equations). Throws
+  // std::invalid_argument unless tail has m equations in m + n variables.
+  SquareSystem(const ParametricSystem& head, std::vector<Polynomial> tail);
   int size() const;
-  const std::vector<Polynomial>& equations() const;
+  std::vector<Polynomial> equations() const;
 
   struct Impl;
   const Impl& impl() const { return *impl_; }
@@ -79,7 +87,7 @@ class ParametricSystem {
   ParametricSystem(std::vector<Polynomial> equations, int num_parameters);
   int size() const;            // n
   int num_parameters() const;  // m
-  const std::vector<Polynomial>& equations() const;
+  std::vector<Polynomial> equations() const;
 
   const SquareSystem::Impl& impl() const { return *impl_; }
 

@@ -401,6 +401,18 @@ Polynomial Polynomial::variable(int index, int n) {
   return p;
 }
 
+Polynomial Polynomial::affine(const mpq_class& c, std::span<const mpq_class> linear) {
+  const int n = static_cast<int>(linear.size());
+  Polynomial p(n);
+  p.terms_.push_back(Term{c, Monomial{std::vector<std::uint32_t>(n, 0)}});
+  for (int j = 0; j < n; ++j) {
+    p.terms_.push_back(Term{linear[j], Monomial{std::vector<std::uint32_t>(n, 0)}});
+    p.terms_.back().monomial.exponents[j] = 1;
+  }
+  p.normalize();  // order the terms, drop the zero coefficients
+  return p;
+}
+
 bool Polynomial::is_constant() const {
   return terms_.empty() ||
          (terms_.size() == 1 && std::all_of(terms_[0].monomial.exponents.begin(),

@@ -82,6 +82,8 @@ class Polynomial {
   static Polynomial parse(std::string_view text, int num_variables);
   static Polynomial constant(const mpq_class& c, int num_variables);
   static Polynomial variable(int index, int num_variables);  // x_{index+1}, 0-based index
+  // c + sum_j linear[j] x_{j+1}, over linear.size() variables (one construction, no merges).
+  static Polynomial affine(const mpq_class& c, std::span<const mpq_class> linear);
 
   int num_variables() const { return num_vars_; }
   const std::vector<Term>& terms() const { return terms_; }

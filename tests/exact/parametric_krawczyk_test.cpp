@@ -105,4 +105,35 @@ TEST(ParametricKrawczyk, HugeAndTinyMagnitudesAreNeverWrong) {
 }
 
 }  // namespace
+TEST(StackedSystem, SharesTheHeadAndDecidesLikeTheSystemWrittenOut) {
+  // Head: the unit circle as a chart-like parametric system G(u, h) = u^2 + h^2 - 1 (u = x1,
+  // h = x2); tail: the line h = 2u - 1/2 written as an affine polynomial. The stacked square
+  // system must be the system {G, tail} over (u, h) and give the same Krawczyk answers.
+  const ParametricSystem head = parse_parametric({"x1^2 + x2^2 - 1"}, 1);
+  const std::vector<Q> linear{Q(-2), Q(1)};
+  const Polynomial line = Polynomial::affine(Q(1, 2), linear);
+  EXPECT_EQ(line, Polynomial::parse("x2 - 2*x1 + 1/2", 2));
+  const SquareSystem stacked(head, {line});
+  const SquareSystem written({Polynomial::parse("x1^2 + x2^2 - 1", 2), line});
+  ASSERT_EQ(stacked.size(), 2);
+  EXPECT_EQ(stacked.equations(), written.equations());
+  for (const Box& X : {Box{{0.5, 1.0}, {0.0, 1.0}}, Box{{-0.5, 0.2}, {-1.0, -0.5}}, Box{{-1.0, 1.0}, {-1.0, 1.0}},
+                       Box{{2.0, 3.0}, {0.0, 1.0}}}) {
+    const KrawczykResult a = krawczyk(stacked, X), b = krawczyk(written, X);
+    EXPECT_EQ(a.status, b.status);
+    ASSERT_EQ(a.box.size(), b.box.size());
+    for (std::size_t i = 0; i < a.box.size(); ++i) EXPECT_TRUE(a.box[i].lo == b.box[i].lo && a.box[i].hi == b.box[i].hi);
+  }
+  // Wrong shapes are refused: the tail must complete the head to a square system.
+  EXPECT_THROW(SquareSystem(head, {}), std::invalid_argument);
+  EXPECT_THROW(SquareSystem(head, {line, line}), std::invalid_argument);
+  EXPECT_THROW(SquareSystem(head, {Polynomial::parse("x1 + x3", 3)}), std::invalid_argument);
+}
+
+TEST(Polynomial, AffineDropsZeroCoefficients) {
+  const std::vector<Q> linear{Q(0), Q(3, 7), Q(0)};
+  EXPECT_EQ(Polynomial::affine(Q(0), linear), Polynomial::parse("3/7*x2", 3));
+  EXPECT_TRUE(Polynomial::affine(Q(0), std::vector<Q>(2, Q(0))).is_zero());
+}
+
 }  // namespace delcert::exact
