@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "certify/detail/parallel.hpp"
 #include "exact/interval_arithmetic.hpp"
@@ -10,6 +11,9 @@
 namespace delcert::certify {
 
 namespace {
+
+// Cells analysed together before the covering target is raised (memory: one chunk of cells).
+constexpr std::size_t kChunk = 1024;
 
 // The distance from p to its nearest other point (floating point: it only picks a radius).
 double nearest_distance(const io::PointSet& P, const detail::PointGrid& grid, int p) {
@@ -36,20 +40,42 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   const int n = static_cast<int>(P.size());
   RestrictedDelaunay R;
   R.cells.resize(n);
-  // The first radius: twice the largest nearest-neighbour distance.
+  // The first radii: r_p = 2 max(own nearest-neighbour distance, the median one) (the median
+  // keeps a point of a close pair from a radius that its cell would outgrow).
   std::vector<double> nn(n);
   detail::parallel_for(n, o.threads, [&](std::size_t p, int) { nn[p] = nearest_distance(P, grid, static_cast<int>(p)); });
-  double r = 2 * *std::max_element(nn.begin(), nn.end());
+  std::vector<double> sorted = nn;
+  double median = 0;
+  if (n > 0) std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end()), median = sorted[n / 2];
   const double r_cap = 2 * grid.diameter();  // a ball this large holds all of P: larger never helps
-  if (!(r > 0 && std::isfinite(r))) r = grid.diameter();
+  std::vector<double> radius(n);
+  for (int p = 0; p < n; ++p) {
+    radius[p] = 2 * std::max(nn[p], median);
+    if (!(radius[p] > 0 && std::isfinite(radius[p]))) radius[p] = grid.diameter();
+  }
   std::vector<int> todo(n);
   for (int p = 0; p < n; ++p) todo[p] = p;
+  double target = 0;  // the covering target: the largest vertex distance found so far
   for (int round = 0; !todo.empty(); ++round) {
-    RestrictedCellOptions co = o.cell;
-    co.graph_radius = r;
-    detail::parallel_for(todo.size(), o.threads, [&](std::size_t i, int) {
-      R.cells[todo[i]] = analyse_restricted_cell(system, P, grid, todo[i], co);
-    });
+    // In chunks of a fixed size (not of the thread count: the result must not depend on it), the
+    // first passes, then the second passes against the largest vertex distance found so far
+    // (COVERING TARGET in restricted.hpp).
+    for (std::size_t begin = 0; begin < todo.size(); begin += kChunk) {
+      const std::size_t count = std::min(kChunk, todo.size() - begin);
+      std::vector<std::optional<RestrictedCell>> cells(count);
+      std::vector<double> lower(count);
+      detail::parallel_for(count, o.threads, [&](std::size_t i, int) {
+        RestrictedCellOptions co = o.cell;
+        co.graph_radius = radius[todo[begin + i]];
+        cells[i].emplace(system, P, grid, todo[begin + i], co);
+        lower[i] = cells[i]->first_pass();
+      });
+      target = std::max(target, *std::max_element(lower.begin(), lower.end()));
+      detail::parallel_for(count, o.threads, [&](std::size_t i, int) {
+        R.cells[todo[begin + i]] = cells[i]->second_pass(target);
+        cells[i].reset();
+      });
+    }
     R.rounds_used = round + 1;
     double c = 0;
     for (const auto& cell : R.cells) c = std::max(c, cell.covering_bound);
@@ -57,10 +83,10 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     for (int p = 0; p < n; ++p) {
       const RestrictedCellReport& cell = R.cells[p];
       const bool reaches = cell.undecided.empty() && !cell.complete;  // reaches its ball's boundary
-      if (reaches || !(c < cell.graph_radius)) again.push_back(p);
+      if ((reaches || !(c < cell.graph_radius)) && radius[p] < r_cap) again.push_back(p);
     }
-    if (again.empty() || round >= o.rounds || r >= r_cap) break;
-    r = std::min(r_cap, std::max(2 * r, 1.5 * c));
+    if (again.empty() || round >= o.rounds) break;
+    for (int p : again) radius[p] = std::min(r_cap, std::max(2 * radius[p], 1.5 * c));
     todo = std::move(again);
   }
 

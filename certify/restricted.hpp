@@ -3,8 +3,9 @@
 // 11 (covering), 12 (restricted_delaunay) and 13 (tangential_equals_restricted).
 //
 // THE RADIUS. Every cell is analysed in a ball B(p, r_p) (no reach and no graph property is
-// assumed: rvd.hpp). The first radius is twice the largest nearest-neighbour distance (a cell
-// rarely reaches farther); points whose cell reaches its ball's boundary, or
+// assumed: rvd.hpp). The first radius is r_p = 2 max(d_p, median of the d_q), d_p the distance from
+// p to its nearest other point (a cell rarely reaches farther); points whose cell reaches its
+// ball's boundary, or
 // whose radius is not above the largest covering bound c found so far, are analysed again with a
 // larger radius (at most `rounds` times).
 //
@@ -21,6 +22,14 @@
 // Under the same conditions, every restricted Voronoi vertex of P lies within c of its points,
 // hence inside the analysed balls: the vertices found are ALL of them, and the purity test of
 // rvd.hpp covers every restricted Voronoi face.
+//
+// COVERING TARGET (work only). A kept box whose certified bound is at most some distance d(x, P)
+// with x in M already known (a restricted Voronoi vertex found anywhere) cannot raise c above that
+// known value much, so refining it only tightens a bound that is not the maximum. The cells are
+// analysed in chunks of a fixed size: first passes, then second passes refined only above the
+// largest vertex distance found so far (rvd.hpp, RestrictedCell). Every kept box still adds its
+// own certified bound: the target changes how tight c is, never whether it is an upper bound; and
+// the chunks do not depend on the thread count, so neither does c.
 //
 // CROSS-CHECK. A vertex found at p (certified without any assumption) must also be found at each
 // other point of its simplex whose cell is complete (it is within c < r of that point too); a miss

@@ -61,15 +61,16 @@ mpq_class smallest_eigenvalue_bound(const std::vector<mpq_class>& A, int rows, i
 }
 
 // A candidate q relative to p: s_q(u, h) = |q|^2 - |p|^2 - 2 x.(q - p) = c - 2 a.u - 2 b.h with
-// d = q - p, c = |d|^2, a = T^T d, b = Nn^T d (x = p + T u + Nn h); exact and enclosed.
+// d = q - p, c = |d|^2, a = T^T d, b = Nn^T d (x = p + T u + Nn h). The subdivision needs only
+// enclosures of c, 2a and 2b, computed in interval arithmetic from the coordinates (the enclosure
+// of d = q - p holds the exact difference of the two doubles; T_enc, N_enc hold the exact bases),
+// so they hold the exact values; an overflow gives an infinite or NaN bound, which decides nothing.
+// The exact rationals are computed only for the few candidates that enter a Krawczyk system
+// (exact_form).
 struct Candidate {
   int index = -1;
-  mpq_class c;
-  std::vector<mpq_class> a, b;
-  std::vector<Interval> c_enc, a_enc, b_enc;
-  // 2 a and 2 b enclosed (doubling an enclosure is exact: the same intervals sign_form computed
-  // from a_enc, b_enc before they were cached here).
-  std::vector<IA> a2, b2;
+  IA c;
+  std::vector<IA> a2, b2;  // 2 a (m of them) and 2 b (k of them)
 };
 
 struct Work {
@@ -119,61 +120,58 @@ class CellAnalysis {
     const std::span<const double> pp = points.point(p);
     const std::vector<int> ball = grid.ball(pp, 2 * r);
     cands_.reserve(ball.size());
+    exact::UpwardRounding up;
+    SmallBuffer<IA, 16> d(N_);
     for (int q : ball) {
       if (q == p) continue;
       Candidate C;
       C.index = q;
-      std::vector<mpq_class> d(N_);
-      for (int v = 0; v < N_; ++v) d[v] = exact::to_rational(points.point(q)[v]) - exact::to_rational(pp[v]);
-      for (int v = 0; v < N_; ++v) C.c += d[v] * d[v];
-      C.a.assign(m_, 0);
-      C.b.assign(k_, 0);
+      C.c = IA(0);
       for (int v = 0; v < N_; ++v) {
-        for (int a = 0; a < m_; ++a) C.a[a] += T[v * m_ + a] * d[v];
-        for (int l = 0; l < k_; ++l) C.b[l] += Nn[v * k_ + l] * d[v];
+        d[v] = IA(points.point(q)[v]) - IA(pp[v]);
+        C.c += exact::square(d[v]);
       }
-      C.c_enc = {exact::enclose(C.c)};
-      for (const auto& x : C.a) C.a_enc.push_back(exact::enclose(x));
-      for (const auto& x : C.b) C.b_enc.push_back(exact::enclose(x));
-      {
-        exact::UpwardRounding up;
-        for (const auto& x : C.a_enc) C.a2.push_back(IA(2) * ia(x));
-        for (const auto& x : C.b_enc) C.b2.push_back(IA(2) * ia(x));
+      C.a2.resize(m_);
+      C.b2.resize(k_);
+      for (int a = 0; a < m_; ++a) {
+        IA t(0);
+        for (int v = 0; v < N_; ++v) t += ia(T_enc_[v * m_ + a]) * d[v];
+        C.a2[a] = IA(2) * t;
+      }
+      for (int l = 0; l < k_; ++l) {
+        IA t(0);
+        for (int v = 0; v < N_; ++v) t += ia(N_enc_[v * k_ + l]) * d[v];
+        C.b2[l] = IA(2) * t;
       }
       cands_.push_back(std::move(C));
     }
   }
 
-  RestrictedCellReport run() {
+  // The first pass: subdivision until every box is resolved; returns the largest distance from p
+  // to a vertex found (a lower bound of max_{x in M} d(x, P): a vertex is a point of M at that
+  // distance from its nearest points), 0 when none.
+  double first_pass() {
     report_.point = p_;
     Work root;
     root.U.assign(m_, Interval{-rho_u_, rho_u_});
     for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
-    auto subdivide = [&](std::vector<Work> stack) {
-      while (!stack.empty()) {
-        Work w = std::move(stack.back());
-        stack.pop_back();
-        if (report_.boxes >= opt_.max_boxes) {
-          undecided(w, box_centre(w.U, Box(k_, Interval{0, 0})), "box budget exhausted");
-          continue;
-        }
-        visit(std::move(w), stack);
-      }
-    };
     subdivide({root});
-    // Second pass: the resolved boxes kept for covering refinement. A box whose bound is at most
-    // the distance from p to a vertex found (a point of the cell) need not be refined: the
-    // largest bound is attained elsewhere or is already that close. (Only the work depends on
-    // this; every kept box still contributes its own certified bound.)
-    refining_ = true;
-    {
-      exact::UpwardRounding up;
-      for (const auto& v : report_.vertices) {
-        IA d(0);
-        for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
-        refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
-      }
+    exact::UpwardRounding up;
+    for (const auto& v : report_.vertices) {
+      IA d(0);
+      for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
+      refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
     }
+    return refine_below_;
+  }
+
+  // The second pass: the resolved boxes kept for covering refinement. A box whose bound is at most
+  // covering_target or the distance from p to a vertex found (a point of the cell) need not be
+  // refined: the largest bound is attained elsewhere or is already that close. (Only the work
+  // depends on this; every kept box still contributes its own certified bound.)
+  RestrictedCellReport second_pass(double covering_target) {
+    refining_ = true;
+    if (covering_target > refine_below_) refine_below_ = covering_target;
     std::reverse(pending_.begin(), pending_.end());
     subdivide(std::move(pending_));
     finish();
@@ -181,6 +179,18 @@ class CellAnalysis {
   }
 
  private:
+  void subdivide(std::vector<Work> stack) {
+    while (!stack.empty()) {
+      Work w = std::move(stack.back());
+      stack.pop_back();
+      if (report_.boxes >= opt_.max_boxes) {
+        undecided(w, box_centre(w.U, Box(k_, Interval{0, 0})), "box budget exhausted");
+        continue;
+      }
+      visit(std::move(w), stack);
+    }
+  }
+
   // Is every face C of K = {p} + S with p in C and 2 <= |C| <= m a face of a vertex simplex found
   // so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure `face` is the
   // first such C.
@@ -209,7 +219,7 @@ class CellAnalysis {
 
   // Interval hull of s_q over U x H.
   IA sign_form(const Candidate& C, const Box& U, const Box& H) const {
-    IA s = ia(C.c_enc[0]);
+    IA s = C.c;
     for (int a = 0; a < m_; ++a) s -= C.a2[a] * ia(U[a]);
     for (int l = 0; l < k_; ++l) s -= C.b2[l] * ia(H[l]);
     return s;
@@ -496,16 +506,23 @@ class CellAnalysis {
     const std::vector<int> simplex = simplex_of(w.S);
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
-      std::vector<exact::Polynomial> eqs = chart_.chart_system().equations();
-      const int vars = m_ + k_;
+      // The chart's rows G(u, h) (shared), then s_q = c - 2 a.u - 2 b.h for each q, in exact
+      // rationals (see Candidate).
+      std::vector<exact::Polynomial> rows;
+      const std::span<const double> pp = points_.point(p_);
+      std::vector<mpq_class> d(N_), linear(m_ + k_);
       for (int i : w.S) {
-        const Candidate& C = cands_[i];
-        exact::Polynomial s = exact::Polynomial::constant(C.c, vars);
-        for (int a = 0; a < m_; ++a) s = s - exact::Polynomial::variable(a, vars).scaled(mpq_class(2 * C.a[a]));
-        for (int l = 0; l < k_; ++l) s = s - exact::Polynomial::variable(m_ + l, vars).scaled(mpq_class(2 * C.b[l]));
-        eqs.push_back(std::move(s));
+        const std::span<const double> qq = points_.point(cands_[i].index);
+        mpq_class c = 0;
+        for (int v = 0; v < N_; ++v) d[v] = exact::to_rational(qq[v]) - exact::to_rational(pp[v]), c += d[v] * d[v];
+        for (int j = 0; j < m_ + k_; ++j) {
+          linear[j] = 0;
+          for (int v = 0; v < N_; ++v) linear[j] -= (j < m_ ? chart_.tangent(v, j) : chart_.normal(v, j - m_)) * d[v];
+          linear[j] *= 2;
+        }
+        rows.push_back(exact::Polynomial::affine(c, linear));
       }
-      it = systems_.emplace(simplex, exact::SquareSystem(std::move(eqs))).first;
+      it = systems_.emplace(simplex, exact::SquareSystem(chart_.chart_system(), std::move(rows))).first;
     }
     Box UH = w.U;
     UH.insert(UH.end(), H.begin(), H.end());
@@ -608,9 +625,26 @@ class CellAnalysis {
 
 }  // namespace
 
+struct RestrictedCell::Impl {
+  CellAnalysis cell;
+};
+
+RestrictedCell::RestrictedCell(const exact::ImplicitSystem& system, const io::PointSet& points,
+                               const detail::PointGrid& grid, int p, const RestrictedCellOptions& options)
+    : impl_(std::make_unique<Impl>(Impl{CellAnalysis(system, points, grid, p, options)})) {}
+RestrictedCell::~RestrictedCell() = default;
+RestrictedCell::RestrictedCell(RestrictedCell&&) noexcept = default;
+RestrictedCell& RestrictedCell::operator=(RestrictedCell&&) noexcept = default;
+double RestrictedCell::first_pass() { return impl_->cell.first_pass(); }
+RestrictedCellReport RestrictedCell::second_pass(double covering_target) {
+  return impl_->cell.second_pass(covering_target);
+}
+
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
                                              const detail::PointGrid& grid, int p, const RestrictedCellOptions& options) {
-  return CellAnalysis(system, points, grid, p, options).run();
+  CellAnalysis cell(system, points, grid, p, options);
+  cell.first_pass();
+  return cell.second_pass(0);
 }
 
 }  // namespace delcert::certify

@@ -55,6 +55,7 @@
 // Deterministic: one point, sequential depth-first subdivision; no dependence on thread count.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,30 @@ struct RestrictedCellReport {
   int max_depth = 0;
 };
 
+// The analysis in its two passes, for a caller that refines the covering bound of many cells
+// against one shared target (certify/restricted.cpp): first_pass() subdivides until every box is
+// resolved and returns the largest distance from p to a restricted Voronoi vertex found (a lower
+// bound of max_{x in M} d(x, P); 0 when none); second_pass(target) refines the kept boxes for the
+// covering bound and purity, not refining a box whose bound is at most max(target, that distance).
+// The target only decides work: every kept box contributes its own certified bound, whatever the
+// target. Call first_pass() once, then second_pass() once.
+// Throws as analyse_restricted_cell (below).
+class RestrictedCell {
+ public:
+  RestrictedCell(const exact::ImplicitSystem& system, const io::PointSet& points, const detail::PointGrid& grid,
+                 int p, const RestrictedCellOptions& options);
+  ~RestrictedCell();
+  RestrictedCell(RestrictedCell&&) noexcept;
+  RestrictedCell& operator=(RestrictedCell&&) noexcept;
+  double first_pass();
+  RestrictedCellReport second_pass(double covering_target);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Both passes with no shared target (the cell's own vertices bound the refinement).
 // Throws std::invalid_argument on a non-positive graph_radius, std::domain_error when J_F(p) is
 // rank deficient or Gershgorin cannot bound T^T T or Nn^T Nn away from 0.
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,

@@ -162,6 +162,32 @@ TEST(RestrictedCell, CoveringBoundSeesAHole) {
   expect_consistent(cells_run);
 }
 
+TEST(RestrictedCell, ACoveringTargetChangesTheWorkNotTheAnswer) {
+  // The two passes with a shared target (RestrictedCell): the same vertices, and a covering bound
+  // that is still an upper bound of the cell (at least its farthest vertex) and at most the target
+  // plus the finest boxes' overestimate; a high target means less work.
+  const io::PointSet P = spread_sphere(3, 60, 0.3, 11);
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
+  const detail::PointGrid grid(P, 2);
+  RestrictedCellOptions opt;
+  opt.graph_radius = 0.9;
+  for (int p = 0; p < 10; ++p) {
+    const RestrictedCellReport alone = analyse_restricted_cell(F, P, grid, p, opt);
+    RestrictedCell cell(F, P, grid, p, opt);
+    const double lower = cell.first_pass();
+    const double target = 2 * alone.covering_bound;
+    const RestrictedCellReport shared = cell.second_pass(target);
+    ASSERT_TRUE(alone.complete && shared.complete) << p;
+    ASSERT_EQ(alone.vertices.size(), shared.vertices.size()) << p;
+    for (std::size_t i = 0; i < alone.vertices.size(); ++i) EXPECT_EQ(alone.vertices[i].simplex, shared.vertices[i].simplex);
+    EXPECT_GT(lower, 0);
+    EXPECT_LE(lower, alone.covering_bound);
+    EXPECT_GE(shared.covering_bound, lower);
+    EXPECT_LE(shared.covering_bound, target);
+    EXPECT_LE(shared.boxes, alone.boxes) << p;
+  }
+}
+
 TEST(RestrictedCell, CubeOnItsSphereIsNeverDecided) {
   // Exactly degenerate: the centre of each face of the cube is equidistant from its 4 vertices.
   std::vector<std::vector<double>> pts;

@@ -109,8 +109,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // (Del_M, checks 14-15, certify/intrinsic*) does not reuse the RVD engine: on a sphere Del_M is
   // the hull of the projected points and on a flat torus a periodic Delaunay tessellation, each
   // decided directly with its own proof (~850 lines, half of them the proofs in comments, cheaper
-  // and sharper than the subdivision would be). New budget: 6500 lines.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 6500) << "certify/ should stay small enough to read whole";
+  // and sharper than the subdivision would be). New budget: 6500 lines. The RVD's two-pass split
+  // for a shared covering target (RestrictedCell, COVERING TARGET in restricted.hpp, ~80 lines
+  // with their argument) took it to 6580: 6700, not more without taking something out.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 6700) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
