@@ -644,6 +644,26 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   return cov;
 }
 
+// The m-simplices of a complex, each sorted.
+std::set<Simplex> top_simplices(const io::Complex& K, int m) {
+  std::set<Simplex> tops;
+  for (Simplex s : K.simplices)
+    if (static_cast<int>(s.size()) == m + 1) std::sort(s.begin(), s.end()), tops.insert(std::move(s));
+  return tops;
+}
+
+// A check that is not a claim of this input: its decision is reported (details.decision), not
+// held against the input.
+void report_unclaimed(CheckEntry& e) {
+  e.details["decision"] = to_string(e.verdict);
+  e.verdict = Verdict::report;
+  e.summary += " [not claimed]";
+}
+
+std::string equality(Verdict v, const std::string& a, const std::string& b) {
+  return v == Verdict::certified ? a + " = " + b : v == Verdict::refuted ? a + " != " + b : a + " = " + b + " not decided";
+}
+
 // Check 12: Del_RM(P) computed (every m-simplex with a certified restricted Voronoi vertex; all
 // of them when the covering argument holds; pure when no face is in doubt) and, with --kind
 // restricted, compared with the given complex.
@@ -666,12 +686,7 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
                     {"missed_at", f.missed_at}});
   long missing = 0, extra = 0;
   if (claimed && given) {
-    std::set<Simplex> tops;
-    for (const auto& s0 : given->simplices) {
-      Simplex s = s0;
-      std::sort(s.begin(), s.end());
-      if (static_cast<int>(s.size()) == m + 1) tops.insert(s);
-    }
+    const std::set<Simplex> tops = top_simplices(*given, m);
     std::set<Simplex> found;
     for (const auto& s : R.simplices) {
       found.insert(s.simplex);
@@ -765,17 +780,9 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
   }
   eq.details = {{"tangential_m_simplices", tm.size()}, {"restricted_m_simplices", rm.size()},
                 {"only_in_restricted", only_rm}, {"only_in_tangential", only_tm}, {"stars_undetermined", unknown_stars}};
-  const std::string decided = eq.verdict == Verdict::certified ? "Del_TM(P) = Del_RM(P)"
-                              : eq.verdict == Verdict::refuted ? "Del_TM(P) != Del_RM(P)"
-                                                               : "Del_TM(P) = Del_RM(P) not decided";
-  eq.summary = decided + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
+  eq.summary = equality(eq.verdict, "Del_TM(P)", "Del_RM(P)") + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
                std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) + " only restricted)";
-  if (!claimed) {
-    // Not a claim of this input (--kind restricted): the decision is reported, not held against it.
-    eq.details["decision"] = to_string(eq.verdict);
-    eq.verdict = Verdict::report;
-    eq.summary += " [not claimed]";
-  }
+  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
@@ -801,12 +808,8 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
     if (!D.complete) im.undecide("Del_M(P) not known completely: " + D.reason);
     long missing = 0, extra = 0;
     if (intrinsic_kind && given) {
-      std::set<Simplex> tops, certified;
-      for (const auto& s0 : given->simplices) {
-        Simplex s = s0;
-        std::sort(s.begin(), s.end());
-        if (static_cast<int>(s.size()) == m + 1) tops.insert(s);
-      }
+      const std::set<Simplex> tops = top_simplices(*given, m);
+      std::set<Simplex> certified;
       for (const auto& s : D.simplices) {
         certified.insert(s.simplex);
         if (tops.count(s.simplex)) continue;
@@ -846,11 +849,7 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
                                                 std::to_string(extra) + " not in Del_M"
                                           : "");
   }
-  if (!claimed) {
-    im.details["decision"] = to_string(im.verdict);
-    im.verdict = Verdict::report;
-    im.summary += " [not claimed]";
-  }
+  if (!claimed) report_unclaimed(im);
   return im;
 }
 
@@ -892,17 +891,10 @@ CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const 
   }
   eq.details = {{"restricted_m_simplices", rm.size()}, {"intrinsic_m_simplices", im.size()},
                 {"only_in_restricted", only_rm}, {"only_in_intrinsic", only_m}};
-  const std::string decided = eq.verdict == Verdict::certified ? "Del_RM(P) = Del_M(P)"
-                              : eq.verdict == Verdict::refuted ? "Del_RM(P) != Del_M(P)"
-                                                               : "Del_RM(P) = Del_M(P) not decided";
-  eq.summary = decided + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
+  eq.summary = equality(eq.verdict, "Del_RM(P)", "Del_M(P)") + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
                std::to_string(only_rm) + " only restricted, " + std::to_string(only_m) + " only intrinsic)";
   if (!D.computed) eq.summary = "not decided: Del_M(P) not computed: " + D.reason;
-  if (!claimed) {
-    eq.details["decision"] = to_string(eq.verdict);
-    eq.verdict = Verdict::report;
-    eq.summary += " [not claimed]";
-  }
+  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
