@@ -54,7 +54,7 @@ Polynomial substitute_affine(const Polynomial& f, const std::vector<Polynomial>&
     Polynomial prod = Polynomial::constant(t.coefficient, vars);
     for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v)
       if (t.monomial.exponents[v] > 0) prod = prod * power(v, t.monomial.exponents[v]);
-    out = out + prod;
+    out += std::move(prod);  // a linear merge (both sorted), not a re-sort of the sum
   }
   return out;
 }
