@@ -486,14 +486,27 @@ CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattic
   return topo;
 }
 
+// A check that is not a claim of this input: its decision is reported (details.decision), not
+// held against the input.
+void report_unclaimed(CheckEntry& e) {
+  e.details["decision"] = to_string(e.verdict);
+  e.verdict = Verdict::report;
+  e.summary += " [not claimed]";
+}
+
 // Check 7 (a report): which star simplices are secure (paper Definition 3.1), with the
 // parameters that check 9 derives from the measured values.
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
-                                  int threads, std::vector<exact::FilterContext>& ctx) {
+                                  int threads, std::vector<exact::FilterContext>& ctx, bool claimed) {
   CheckEntry secure(CheckId::secure_simplices);
-  secure.verdict = Verdict::report;
+  if (claimed)
+    secure.claim = {{"secure", true},
+                    {"meaning", "every m-simplex of the complex is secure (Definition 3.1) with eps the certified "
+                                "covering radius"}};
   if (!tp.usable) {
+    secure.undecide("not evaluated: " + tp.why);
     secure.summary = "not evaluated: " + tp.why;
+    if (!claimed) report_unclaimed(secure);
     return secure;
   }
   const std::size_t n = reports.size();
@@ -506,9 +519,10 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
     for (const auto& c : reports[p].star) st.push_back(c.simplex);
     sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
   });
-  long ok = 0, bad = 0, fallbacks = 0, skipped = 0;
+  long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0;
   std::map<std::string, long> reasons;
   for (std::size_t p = 0; p < n; ++p) {
+    if (reports[p].state != StarReport::State::proven) ++unproven;
     ok += sr[p].secure, bad += sr[p].insecure, fallbacks += sr[p].exact_fallbacks, skipped += sr[p].undecided;
     for (const auto& [s, why] : sr[p].failures) {
       std::string key = why.substr(0, why.find(" ("));
@@ -516,12 +530,24 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
       if (secure.witnesses.size() < 20) secure.add_witness({{"simplex", s}, {"at_vertex", p}, {"failed", why}});
     }
   }
-  secure.details = {{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
-                    {"first_failed_condition_counts", reasons}, {"exact_fallbacks", fallbacks},
-                    {"not_evaluated", skipped},
-                    {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}};
-  secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1)" +
+  // The decision: Definition 3.1 is about a sampling radius eps; with eps only a star-radius
+  // bound (check 11 not certified) neither answer is the paper's.
+  if (!tp.eps_is_sampling_radius)
+    secure.undecide("eps is not a certified sampling radius (check 11 not CERTIFIED): Definition 3.1 not decided");
+  else if (bad)
+    secure.refute("a simplex is not secure (Definition 3.1); the witnesses give the first failed condition");
+  else if (skipped)
+    secure.undecide(std::to_string(skipped) + " star simplices not evaluated (more than 4000 points within 5 eps)");
+  else if (unproven)
+    secure.undecide(std::to_string(unproven) + " star(s) not determined exactly");
+  secure.details.update(json{{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
+                              {"first_failed_condition_counts", reasons}, {"exact_fallbacks", fallbacks},
+                              {"not_evaluated", skipped},
+                              {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}});
+  secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1" +
+                   (tp.eps_is_sampling_radius ? ", eps >= the certified covering radius)" : ", eps a star-radius bound only)") +
                    (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 4000 points within 5 eps)" : "");
+  if (!claimed) report_unclaimed(secure);
   return secure;
 }
 
@@ -650,14 +676,6 @@ std::set<Simplex> top_simplices(const io::Complex& K, int m) {
   for (Simplex s : K.simplices)
     if (static_cast<int>(s.size()) == m + 1) std::sort(s.begin(), s.end()), tops.insert(std::move(s));
   return tops;
-}
-
-// A check that is not a claim of this input: its decision is reported (details.decision), not
-// held against the input.
-void report_unclaimed(CheckEntry& e) {
-  e.details["decision"] = to_string(e.verdict);
-  e.verdict = Verdict::report;
-  e.summary += " [not claimed]";
 }
 
 std::string equality(Verdict v, const std::string& a, const std::string& b) {
@@ -967,7 +985,7 @@ Certificate run_certify(const CertifyOptions& o) {
     consistency = tangent_space_undefined(CheckId::consistency, first, false);
     protection_entry = tangent_space_undefined(CheckId::power_protection, first, claims.power_protection.has_value());
     radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value());
-    secure = tangent_space_undefined(CheckId::secure_simplices, first, false);
+    secure = tangent_space_undefined(CheckId::secure_simplices, first, claims.secure);
     theorem = tangent_space_undefined(CheckId::theorem, first, false);
   }
 
@@ -985,22 +1003,6 @@ Certificate run_certify(const CertifyOptions& o) {
 
   CheckEntry topology = check_topology(K, m, lattice, spec.expected);
   watch.record(C, "topology");
-
-  if (on_M) {
-    // Checks 7 and 9: the paper's hypotheses, measured.
-    Measured meas;
-    meas.min_distance = sqrt_lower(sparsity.min_squared);
-    meas.min_thickness = thick.min_top.lo;
-    meas.min_margin = protection->cells ? protection->min_margin.lo : -INFINITY;
-    meas.max_radius_squared = radius->cells ? radius->max_r2.hi : INFINITY;
-    meas.eps = claims.star_radius && radius->entry.verdict == Verdict::certified
-                   ? std::optional<mpq_class>(*claims.star_radius)
-                   : std::nullopt;
-    const TheoremParams tp = theorem_parameters(meas);
-    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx);
-    theorem = theorem_report(tp, spec);
-    watch.record(C, "secure_and_theorem");
-  }
 
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal, intrinsic, equal_mi;
@@ -1020,6 +1022,25 @@ Certificate run_certify(const CertifyOptions& o) {
                  : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);
   }
   watch.record(C, "restricted_delaunay");
+
+  if (on_M) {
+    // Checks 7 and 9: the paper's hypotheses, measured; eps is also a sampling radius when check
+    // 11 certified one (the smallest double above its bound: the paper's eps-sample is strict).
+    Measured meas;
+    meas.min_distance = sqrt_lower(sparsity.min_squared);
+    meas.min_thickness = thick.min_top.lo;
+    meas.min_margin = protection->cells ? protection->min_margin.lo : -INFINITY;
+    meas.max_radius_squared = radius->cells ? radius->max_r2.hi : INFINITY;
+    meas.eps = claims.star_radius && radius->entry.verdict == Verdict::certified
+                   ? std::optional<mpq_class>(*claims.star_radius)
+                   : std::nullopt;
+    if (R && covering->verdict == Verdict::certified)
+      meas.covering = exact::to_rational(std::nextafter(R->covering, INFINITY));
+    const TheoremParams tp = theorem_parameters(meas);
+    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure);
+    theorem = theorem_report(tp, spec);
+    watch.record(C, "secure_and_theorem");
+  }
 
   // Checks 14-15: Del_M, from the candidates of Del_RM, Del_TM and the given complex.
   if (o.skip_restricted) {

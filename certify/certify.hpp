@@ -7,7 +7,8 @@
 //   4 consistency        every simplex is in the star of each of its vertices
 //   5 thickness          Upsilon of every simplex and face against gamma0; flakes
 //   6 power_protection   every star simplex power-protected (beyond the claim); ties refuted
-//   7 secure_simplices   paper Definition 3.1 in each vertex's local Euclidean metric (report)
+//   7 secure_simplices   paper Definition 3.1 in each vertex's local Euclidean metric, eps the certified
+//                        covering radius (a claim with "secure": true, else report)
 //   8 topology           pure closed pseudomanifold, sphere links, Euler, Betti over Z/2, Z/3
 //   9 theorem            Theorem 3.3's hypotheses from the measured values (report)
 //  10 star_radius        every star simplex has R_p(s) < eps (the star_radius claim)

@@ -29,7 +29,8 @@ std::string enc(const exact::Enclosure& e) { return e.to_string(6); }
 
 json TheoremParams::json_parameters() const {
   return {{"eps", exact::rational_to_string(eps)},
-          {"eps_source", eps_measured ? "measured: the smallest double above every certified R_p(s)" : "claim (certified)"},
+          {"eps_source", eps_source},
+          {"eps_is_a_sampling_radius", eps_is_sampling_radius},
           {"lambda", exact::rational_to_string(lambda)},
           {"upsilon0_tilde", exact::rational_to_string(upsilon)},
           {"delta_check_squared", exact::rational_to_string(protection_capped)},
@@ -48,9 +49,18 @@ TheoremParams theorem_parameters(const Measured& M) {
   T.usable = true;
   if (M.eps) {
     T.eps = *M.eps;
+    T.eps_source = "the star_radius claim (certified)";
   } else {
     T.eps_measured = true;
     T.eps = exact::to_rational(std::nextafter(std::sqrt(M.max_radius_squared), INFINITY));
+    T.eps_source = "measured: the smallest double above every certified R_p(s)";
+  }
+  if (M.covering) {
+    T.eps_is_sampling_radius = true;
+    if (*M.covering > T.eps)
+      T.eps = *M.covering, T.eps_measured = false, T.eps_source = "the certified covering radius (check 11)";
+    else
+      T.eps_source += ", at least the certified covering radius (check 11)";
   }
   T.lambda = exact::to_rational(M.min_distance);
   T.upsilon = exact::to_rational(M.min_thickness);
@@ -92,7 +102,11 @@ CheckEntry theorem_report(const TheoremParams& T, const io::ManifoldSpec& spec) 
                {"delta0_squared_mu0_tilde_squared", enc(exact::Enclosure(T.protection_capped) / exact::Enclosure(mpq_class(T.eps * T.eps)))},
                {"eps_bound", enc(bound)},
                {"condition", "eps <= Upsilon0~^2 mu0~^3 delta0^2 rch / 1.5e6  <=>  F = Upsilon0~^2 lambda delta^2 rch / (1.5e6 eps^4) >= 1"}};
-  if (met) {
+  if (met && !T.eps_is_sampling_radius) {
+    e.details["result"] = "not applicable";
+    e.summary = "not applicable: F >= 1 (F in " + enc(F) + ") with eps a bound on the star radii only; P is not "
+                "certified to be an eps-sample (check 11), which the theorem also needs";
+  } else if (met) {
     e.summary = "met: Theorem 3.3 applies (F >= 1, F in " + enc(F) + "), so Del_TM = Del_RM = Del_M";
   } else {
     e.summary = "not met: the theorem needs eps <= " + bound.upper_string() + " but eps = " +

@@ -5,7 +5,9 @@
 // delta >= delta0 mu0~ eps, delta0^2 mu0~^2 <= 1/7 and
 //        eps <= Upsilon0~^2 mu0~^3 delta0^2 rch(M) / 1.5e6,
 // then Del_TM = Del_RM = Del_M. With lambda = mu0~ eps (measured minimum distance), delta^2 the
-// measured minimum power margin (capped at eps^2 / 7, which only weakens it) and delta0 =
+// measured minimum power margin (capped at eps^2 / 7, which only weakens it), eps the larger of
+// the star-radius bound and the certified covering radius (check 11; without it eps is no
+// sampling radius and the theorem does not apply) and delta0 =
 // delta / lambda, the last condition reads F >= 1 for
 //        F = Upsilon0~^2 lambda delta^2 rch / (1.5e6 eps^4),
 // decided exactly (squared, so that rch = sqrt(rch^2) needs no rounding). The same measured
@@ -31,6 +33,7 @@ struct Measured {
   double min_margin = 0;            // certified lower bound of the min power margin (delta^2)
   double max_radius_squared = 0;    // certified upper bound of max R_p(s)^2
   std::optional<mpq_class> eps;     // the claimed eps, when the radius claim was certified
+  std::optional<mpq_class> covering;  // the certified covering radius (check 11 CERTIFIED)
 };
 
 // Largest double <= sqrt(q).
@@ -40,6 +43,10 @@ struct TheoremParams {
   bool usable = false;
   std::string why;                  // when not usable
   bool eps_measured = false;        // eps = smallest double above every R_p(s), not a claim
+  // eps >= the certified covering radius, so P is an eps-sample (the paper's eps is both a bound
+  // on the star radii and a sampling radius): eps = max(star-radius eps, covering).
+  bool eps_is_sampling_radius = false;
+  std::string eps_source;
   mpq_class eps, lambda, upsilon, protection, protection_capped;
   mpq_class delta, upsilon0, shortest;  // Definition 3.1 parameters for check 7
   nlohmann::json json_parameters() const;

@@ -27,6 +27,12 @@ Claims parse_claims(const std::string& text, const std::string& file) {
     const std::string& key = it.key();
     if (key == "format") continue;
     const long line = doc.key_line(key);
+    if (!v1 && key == "secure") {  // the one yes/no claim (check 7)
+      if (!it.value().is_boolean())
+        throw InputError(file, line, "claim 'secure' must be true or false (every m-simplex is secure, Definition 3.1)");
+      c.secure = it.value().get<bool>();
+      continue;
+    }
     if (!v1 && key == "eps")
       throw InputError(file, line,
                        "'eps' is not a version 2 claim: write \"star_radius\" (every star simplex has R_p(s) < value) "
@@ -40,7 +46,7 @@ Claims parse_claims(const std::string& text, const std::string& file) {
     if (!slot)
       throw InputError(file, line, "unknown claim '" + key + "'; known: " +
                                        (v1 ? "eps, sparsity, gamma0, power_protection (version 1)"
-                                           : "star_radius, covering, sparsity, gamma0, power_protection"));
+                                           : "star_radius, covering, sparsity, gamma0, power_protection, secure"));
     const json& v = it.value();
     if (v.is_null()) continue;
     mpq_class q;
@@ -75,6 +81,7 @@ std::string format_claims(const Claims& c) {
       {"star_radius", &c.star_radius}, {"covering", &c.covering}, {"sparsity", &c.sparsity}, {"gamma0", &c.gamma0}, {"power_protection", &c.power_protection}};
   for (const auto& [key, value] : keys)
     if (*value) j[key] = exact::rational_to_string(**value);
+  if (c.secure) j["secure"] = true;
   return j.dump(2) + "\n";
 }
 

@@ -9,8 +9,10 @@
 //     "covering": "0.25",         // P is an eps-sample: d(x, P) < covering, x in M (a distance; check 11)
 //     "sparsity": "0.1",          // every two points are at distance > sparsity    (a distance)
 //     "gamma0": "0.05",           // every simplex of the complex is gamma0-good    (0 < gamma0 <= 1)
-//     "power_protection": "1e-4"  // every star simplex is power-protected by more than this
-//   }                             // (a SQUARED distance, the paper's delta-check^2)
+//     "power_protection": "1e-4", // every star simplex is power-protected by more than this
+//                                 // (a SQUARED distance, the paper's delta-check^2)
+//     "secure": true              // every m-simplex is secure (paper Definition 3.1) with eps
+//   }                             // the certified covering radius (check 7); false = no claim
 //
 // Version 1 ("delcert-claims v1") had one "eps", which meant the star radius: it is still read,
 // as star_radius. Version 2 refuses "eps" (it named two different promises). All claims are
@@ -30,7 +32,8 @@ struct Claims {
   std::optional<mpq_class> sparsity;          // >= 0
   std::optional<mpq_class> gamma0;            // in (0, 1]
   std::optional<mpq_class> power_protection;  // >= 0, squared distance
-  bool any() const { return star_radius || covering || sparsity || gamma0 || power_protection; }
+  bool secure = false;                        // "secure": true (version 2 only)
+  bool any() const { return star_radius || covering || sparsity || gamma0 || power_protection || secure; }
   bool operator==(const Claims&) const = default;
 };
 

@@ -3,6 +3,11 @@
 // fallback path (an interval comparison that cannot decide an exact equality).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+
 #include "exact/number_types.hpp"
 #include "support.hpp"
 
@@ -49,6 +54,108 @@ TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBack
       EXPECT_EQ(fresh.insecure, 4);  // delta = 1/2: the neighbours are not delta-protected
     }
   }
+}
+
+// A Fibonacci sample of the unit sphere (its poles are a little irregular).
+io::PointSet fibonacci_points(int n) {
+  io::PointSet P;
+  P.dimension = 3;
+  const double g = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z), a = g * i;
+    P.push_back(std::vector<double>{r * std::cos(a), r * std::sin(a), z});
+  }
+  return P;
+}
+
+struct SecureRun {
+  TempDir dir{"secure"};
+  CertifyOptions o;
+  explicit SecureRun(const io::PointSet& P, bool claim) {
+    write_text(dir.file("points.txt"), io::format_points(P));
+    write_text(dir.file("claims.json"), claim ? "{\"format\": \"delcert-claims v2\", \"secure\": true}\n"
+                                              : "{\"format\": \"delcert-claims v2\"}\n");
+    o.manifold = "builtin:sphere-2";
+    o.points = dir.file("points.txt");
+    o.claims = dir.file("claims.json");
+    o.threads = 2;
+  }
+};
+
+TEST(SecureSimplices, ClaimedIsDecidedWithTheCertifiedCoveringRadiusAndTheWitnessesRecheck) {
+  const io::PointSet P = fibonacci_points(200);
+  SecureRun run(P, true);
+  const Certificate c = run_certify(run.o);
+  ASSERT_EQ(check(c, CheckId::covering).verdict, Verdict::certified);
+  const CheckEntry& e = check(c, CheckId::secure_simplices);
+  ASSERT_EQ(e.verdict, Verdict::refuted) << e.summary;
+  EXPECT_EQ(c.overall(), Verdict::refuted);
+  EXPECT_TRUE(e.details["parameters"]["eps_is_a_sampling_radius"].get<bool>());
+  // eps is at least the certified covering radius.
+  const double eps = exact::parse_rational(e.details["parameters"]["eps"].get<std::string>()).get_d();
+  EXPECT_GE(eps, std::stod(check(c, CheckId::covering).margin["covering_radius"]["certified_upper_bound"].get<std::string>()));
+  // Each witness: a simplex of the star at its vertex, and for "not delta-protected (point q)",
+  // q projected onto T_p lies (in doubles, with slack) within r + delta of the projected
+  // circumcentre, r the projected circumradius.
+  const std::string delta_text = e.details["parameters"]["delta"].get<std::string>();  // "[lo, hi]"
+  const double delta = std::stod(delta_text.substr(delta_text.find(',') + 1));
+  ASSERT_FALSE(e.witnesses.empty());
+  int rechecked = 0;
+  for (const auto& w : e.witnesses) {
+    const std::vector<int> s = w["simplex"].get<std::vector<int>>();
+    const int p = w["at_vertex"].get<int>();
+    ASSERT_EQ(s.size(), 3u);
+    EXPECT_TRUE(std::find(s.begin(), s.end(), p) != s.end());
+    const std::string why = w["failed"].get<std::string>();
+    const std::string tag = "not delta-protected (point ";
+    if (why.rfind(tag, 0) != 0) continue;
+    const int q = std::stoi(why.substr(tag.size()));
+    std::array<double, 3> n{};
+    double len = 0;
+    for (int k = 0; k < 3; ++k) n[k] = P.point(p)[k], len += n[k] * n[k];
+    for (auto& x : n) x /= std::sqrt(len);
+    auto project = [&](int i) {
+      std::array<double, 3> v{};
+      double d = 0;
+      for (int k = 0; k < 3; ++k) v[k] = P.point(i)[k] - P.point(p)[k], d += v[k] * n[k];
+      for (int k = 0; k < 3; ++k) v[k] -= d * n[k];
+      return v;
+    };
+    // Circumcentre of the projected triangle (a, b, c) in its plane.
+    const auto a = project(s[0]), b = project(s[1]), cc = project(s[2]);
+    std::array<double, 3> u{}, v{};
+    for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = cc[k] - a[k];
+    const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+                 uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2], det = 2 * (uu * vv - uv * uv);
+    const double alpha = vv * (uu - uv) / det, beta = uu * (vv - uv) / det;
+    std::array<double, 3> centre{};
+    for (int k = 0; k < 3; ++k) centre[k] = a[k] + alpha * u[k] + beta * v[k];
+    auto dist = [&](const std::array<double, 3>& x) {
+      return std::sqrt((x[0] - centre[0]) * (x[0] - centre[0]) + (x[1] - centre[1]) * (x[1] - centre[1]) +
+                       (x[2] - centre[2]) * (x[2] - centre[2]));
+    };
+    EXPECT_LE(dist(project(q)), dist(a) + delta + 1e-9) << "simplex at " << p << ", point " << q;
+    ++rechecked;
+  }
+  EXPECT_GT(rechecked, 0);
+}
+
+TEST(SecureSimplices, UnclaimedIsAReportAndWithoutACertifiedCoveringRadiusUndecided) {
+  const io::PointSet P = fibonacci_points(200);
+  SecureRun unclaimed(P, false);
+  const Certificate c = run_certify(unclaimed.o);
+  const CheckEntry& e = check(c, CheckId::secure_simplices);
+  EXPECT_EQ(e.verdict, Verdict::report);
+  EXPECT_EQ(e.details["decision"], "REFUTED");
+  EXPECT_EQ(c.overall(), Verdict::certified);  // the rest of the certificate is unaffected
+
+  SecureRun claimed(P, true);
+  claimed.o.skip_restricted = true;  // no check 11: eps is only a star-radius bound
+  const Certificate d = run_certify(claimed.o);
+  const CheckEntry& f = check(d, CheckId::secure_simplices);
+  EXPECT_EQ(f.verdict, Verdict::undecided) << f.summary;
+  EXPECT_FALSE(f.details["parameters"]["eps_is_a_sampling_radius"].get<bool>());
+  EXPECT_NE(f.details["reason"].get<std::string>().find("check 11"), std::string::npos);
 }
 
 }  // namespace

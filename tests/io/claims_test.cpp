@@ -98,7 +98,7 @@ TEST(Claims, WriteThenReadGivesTheSameRationals) {
   const mpq_class values[] = {mpq_class(1, 10), mpq_class(1, 3), mpq_class(1, 12960000), mpq_class(0),
                               mpq_class(1), exact::parse_rational("123456789012345678901234567891/7"),
                               exact::parse_rational("1e-300"), mpq_class(2, 3)};
-  for (int mask = 0; mask < 32; ++mask)
+  for (int mask = 0; mask < 64; ++mask)
     for (const mpq_class& v : values) {
       Claims c;
       mpq_class eps = v == 0 ? mpq_class(1, 7) : mpq_class(abs(v));  // eps must be positive
@@ -107,6 +107,7 @@ TEST(Claims, WriteThenReadGivesTheSameRationals) {
       if (mask & 2) c.sparsity = abs(v);
       if (mask & 4) c.gamma0 = mpq_class(1, 3);  // must lie in (0, 1]
       if (mask & 8) c.power_protection = abs(v) * abs(v);
+      c.secure = (mask & 32) != 0;
       const std::string text = format_claims(c);
       const Claims back = parse_claims(text, "round-trip.json");
       EXPECT_EQ(back, c) << text;
@@ -125,6 +126,20 @@ TEST(Claims, WriterLayout) {
                               "  \"sparsity\": \"1/36\",\n"
                               "  \"power_protection\": \"1/12960000\"\n}\n");
   EXPECT_EQ(format_claims(Claims{}), "{\n  \"format\": \"delcert-claims v2\"\n}\n");
+}
+
+// "secure" (check 7) is the one yes/no claim: a JSON boolean, version 2 only.
+TEST(Claims, SecureIsABoolean) {
+  EXPECT_TRUE(parse_claims(R"({"format": "delcert-claims v2", "secure": true})", "c.json").secure);
+  const Claims no = parse_claims(R"({"format": "delcert-claims v2", "secure": false})", "c.json");
+  EXPECT_FALSE(no.secure);
+  EXPECT_FALSE(no.any());
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"secure\": \"yes\"}", 2, "true or false");
+  expect_error("{\"format\": \"delcert-claims v2\",\n \"secure\": 1}", 2, "true or false");
+  expect_error("{\"format\": \"delcert-claims v1\",\n \"secure\": true}", 2, "unknown claim");
+  Claims c;
+  c.secure = true;
+  EXPECT_EQ(format_claims(c), "{\n  \"format\": \"delcert-claims v2\",\n  \"secure\": true\n}\n");
 }
 
 }  // namespace
