@@ -497,7 +497,8 @@ void report_unclaimed(CheckEntry& e) {
 // Check 7 (a report): which star simplices are secure (paper Definition 3.1), with the
 // parameters that check 9 derives from the measured values.
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
-                                  int threads, std::vector<exact::FilterContext>& ctx, bool claimed) {
+                                  int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
+                                  bool stars_are_the_complex) {
   CheckEntry secure(CheckId::secure_simplices);
   if (claimed)
     secure.claim = {{"secure", true},
@@ -532,7 +533,10 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   }
   // The decision: Definition 3.1 is about a sampling radius eps; with eps only a star-radius
   // bound (check 11 not certified) neither answer is the paper's.
-  if (!tp.eps_is_sampling_radius)
+  if (!stars_are_the_complex)
+    secure.undecide("Definition 3.1 is evaluated on the stars of Del_TM(P), and the complex is given as another "
+                    "complex (--kind restricted or intrinsic)");
+  else if (!tp.eps_is_sampling_radius)
     secure.undecide("eps is not a certified sampling radius (check 11 not CERTIFIED): Definition 3.1 not decided");
   else if (bad)
     secure.refute("a simplex is not secure (Definition 3.1); the witnesses give the first failed condition");
@@ -1037,7 +1041,7 @@ Certificate run_certify(const CertifyOptions& o) {
     if (R && covering->verdict == Verdict::certified)
       meas.covering = exact::to_rational(std::nextafter(R->covering, INFINITY));
     const TheoremParams tp = theorem_parameters(meas);
-    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure);
+    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind);
     theorem = theorem_report(tp, spec);
     watch.record(C, "secure_and_theorem");
   }

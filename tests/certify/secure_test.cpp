@@ -156,6 +156,16 @@ TEST(SecureSimplices, UnclaimedIsAReportAndWithoutACertifiedCoveringRadiusUndeci
   EXPECT_EQ(f.verdict, Verdict::undecided) << f.summary;
   EXPECT_FALSE(f.details["parameters"]["eps_is_a_sampling_radius"].get<bool>());
   EXPECT_NE(f.details["reason"].get<std::string>().find("check 11"), std::string::npos);
+
+  // The claim is about the complex under test; check 7 evaluates the stars of Del_TM(P), so a
+  // complex given as restricted is not decided by it.
+  SecureRun restricted(P, true);
+  write_text(restricted.dir.file("complex.txt"), io::format_complex(audit("builtin:sphere-2", P).complex));
+  restricted.o.complex = restricted.dir.file("complex.txt");
+  restricted.o.kind = ComplexKind::restricted;
+  const Certificate g = run_certify(restricted.o);
+  EXPECT_EQ(check(g, CheckId::secure_simplices).verdict, Verdict::undecided);
+  EXPECT_EQ(check(g, CheckId::restricted_delaunay).verdict, Verdict::certified);
 }
 
 }  // namespace
