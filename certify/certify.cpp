@@ -541,7 +541,7 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   else if (bad)
     secure.refute("a simplex is not secure (Definition 3.1); the witnesses give the first failed condition");
   else if (skipped)
-    secure.undecide(std::to_string(skipped) + " star simplices not evaluated (more than 4000 points within 5 eps)");
+    secure.undecide(std::to_string(skipped) + " star simplices not evaluated (more than 50 000 points within 5 eps)");
   else if (unproven)
     secure.undecide(std::to_string(unproven) + " star(s) not determined exactly");
   secure.details.update(json{{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
@@ -550,7 +550,7 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
                               {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}});
   secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1" +
                    (tp.eps_is_sampling_radius ? ", eps >= the certified covering radius)" : ", eps a star-radius bound only)") +
-                   (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 4000 points within 5 eps)" : "");
+                   (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 50 000 points within 5 eps)" : "");
   if (!claimed) report_unclaimed(secure);
   return secure;
 }

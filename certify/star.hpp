@@ -106,7 +106,7 @@ struct SecureParams {
 };
 struct SecureReport {
   long secure = 0, insecure = 0;
-  long undecided = 0;        // not evaluated: more than 4000 points within 5 eps of p
+  long undecided = 0;        // not evaluated: more than 50 000 points within 5 eps of p
   long exact_fallbacks = 0;  // cells decided in exact rationals after the interval filter
   std::vector<std::pair<Simplex, std::string>> failures;  // (simplex, first failed condition), capped
 };
