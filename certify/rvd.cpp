@@ -79,6 +79,9 @@ struct Work {
   std::vector<double> hint;  // centre of the parent's slab (empty at the root)
   std::vector<int> S;       // positions in `cands` of the candidates other than p
   int depth = 0;
+  // Krawczyk decided this box or an ancestor with |S| = m: the vertex of {p} + S in the region (a
+  // superset of this box's) is recorded, or there is none; a box with the same S needs no new call.
+  bool vertex_decided = false;
 };
 
 class CellAnalysis {
@@ -443,7 +446,11 @@ class CellAnalysis {
     }
     const int n = static_cast<int>(w.S.size()) + 1;
     bool resolved = n <= m_;  // no restricted Voronoi vertex can lie here
-    if (n == m_ + 1 && chart_slab) resolved = krawczyk_vertex(w, H);
+    // The candidate sets only shrink down the tree and the regions only shrink (U inside the
+    // parent's U, H inside the parent's slab H_eff), so an ancestor's decision with m + 1
+    // candidates covers this box when it still has m + 1: they are the same set.
+    if (n == m_ + 1) resolved = w.vertex_decided || (chart_slab && krawczyk_vertex(w, H));
+    w.vertex_decided = resolved && n == m_ + 1;
     double widest = 0;
     for (const auto& i : w.U) widest = std::max(widest, i.width());
     // A NaN enclosure (an overflow inside an operation) bounds nothing: +inf, never skipped.
@@ -495,6 +502,7 @@ class CellAnalysis {
       c.S = w.S;
       c.H = w.H;
       c.depth = w.depth + 1;
+      c.vertex_decided = w.vertex_decided;
       if (chart_slab) c.hint = hint;
       children.push_back(std::move(c));
     }
