@@ -494,8 +494,9 @@ void report_unclaimed(CheckEntry& e) {
   e.summary += " [not claimed]";
 }
 
-// Check 7 (a report): which star simplices are secure (paper Definition 3.1), with the
-// parameters that check 9 derives from the measured values.
+// Check 7: are the star simplices secure (paper Definition 3.1), with the parameters that check
+// 9 derives from the measured values? Decided only with eps a certified sampling radius; a claim
+// only with "secure": true (else REPORT).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
                                   bool stars_are_the_complex) {

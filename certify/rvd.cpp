@@ -66,7 +66,7 @@ mpq_class smallest_eigenvalue_bound(const std::vector<mpq_class>& A, int rows, i
 // of d = q - p holds the exact difference of the two doubles; T_enc, N_enc hold the exact bases),
 // so they hold the exact values; an overflow gives an infinite or NaN bound, which decides nothing.
 // The exact rationals are computed only for the few candidates that enter a Krawczyk system
-// (exact_form).
+// (krawczyk_vertex).
 struct Candidate {
   int index = -1;
   IA c;

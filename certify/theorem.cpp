@@ -51,14 +51,13 @@ TheoremParams theorem_parameters(const Measured& M) {
     T.eps = *M.eps;
     T.eps_source = "the star_radius claim (certified)";
   } else {
-    T.eps_measured = true;
     T.eps = exact::to_rational(std::nextafter(std::sqrt(M.max_radius_squared), INFINITY));
     T.eps_source = "measured: the smallest double above every certified R_p(s)";
   }
   if (M.covering) {
     T.eps_is_sampling_radius = true;
     if (*M.covering > T.eps)
-      T.eps = *M.covering, T.eps_measured = false, T.eps_source = "the certified covering radius (check 11)";
+      T.eps = *M.covering, T.eps_source = "the certified covering radius (check 11)";
     else
       T.eps_source += ", at least the certified covering radius (check 11)";
   }

@@ -42,11 +42,10 @@ double sqrt_lower(const mpq_class& q);
 struct TheoremParams {
   bool usable = false;
   std::string why;                  // when not usable
-  bool eps_measured = false;        // eps = smallest double above every R_p(s), not a claim
   // eps >= the certified covering radius, so P is an eps-sample (the paper's eps is both a bound
   // on the star radii and a sampling radius): eps = max(star-radius eps, covering).
   bool eps_is_sampling_radius = false;
-  std::string eps_source;
+  std::string eps_source;  // where eps comes from (a claim, the measured star radii, check 11)
   mpq_class eps, lambda, upsilon, protection, protection_capped;
   mpq_class delta, upsilon0, shortest;  // Definition 3.1 parameters for check 7
   nlohmann::json json_parameters() const;

@@ -442,17 +442,14 @@ void Polynomial::normalize() {
 }
 
 Polynomial Polynomial::operator+(const Polynomial& o) const {
-  Polynomial r(std::max(num_vars_, o.num_vars_));
-  r.terms_ = terms_;
-  r.terms_.insert(r.terms_.end(), o.terms_.begin(), o.terms_.end());
-  // Operands over fewer variables (e.g. a default-constructed zero) get their exponent vectors
-  // padded, so that equal monomials compare equal and merge.
-  for (auto& t : r.terms_) t.monomial.exponents.resize(r.num_vars_, 0);
-  r.normalize();
+  Polynomial r = *this;
+  r += Polynomial(o);
   return r;
 }
 
 Polynomial& Polynomial::operator+=(Polynomial&& o) {
+  // Operands over fewer variables (e.g. a default-constructed zero) get their exponent vectors
+  // padded, so that equal monomials compare equal and merge (padding keeps each side sorted).
   const int n = std::max(num_vars_, o.num_vars_);
   num_vars_ = n;
   for (auto& t : terms_) t.monomial.exponents.resize(n, 0);

@@ -95,6 +95,7 @@ class Polynomial {
   Polynomial operator+(const Polynomial& o) const;
   // In place, consuming o: a linear merge when both are normalised (always, for polynomials built
   // by this class), so that parsing a sum of k terms costs O(k^2) moves, not O(k^2 log k) copies.
+  // operator+ is a copy followed by this merge.
   Polynomial& operator+=(Polynomial&& o);
   Polynomial operator-(const Polynomial& o) const;
   Polynomial operator*(const Polynomial& o) const;
