@@ -76,12 +76,17 @@ struct Candidate {
 struct Work {
   Box U;
   Box H;                     // the parent's slab H_eff (empty at the root: no constraint)
-  std::vector<double> hint;  // centre of the parent's slab (empty at the root)
   std::vector<int> S;       // positions in `cands` of the candidates other than p
+  // Candidates dropped from S by COMBINED SIGNS: strictly farther than p on Vor(p) in the box, so
+  // not in S, but kept to discard sub-boxes they are certainly closer on (a box is inside the
+  // cell, and its covering bound tight, only when S and `far` are both empty).
+  std::vector<int> far;
   int depth = 0;
   // Krawczyk decided this box or an ancestor with |S| = m: the vertex of {p} + S in the region (a
   // superset of this box's) is recorded, or there is none; a box with the same S needs no new call.
   bool vertex_decided = false;
+  bool chart_slab = false;   // H is the parent's slab from the chart (not Hpar)
+  bool unique_slab = false;  // ... and Krawczyk proved one point of M over each u in it
 };
 
 class CellAnalysis {
@@ -102,6 +107,7 @@ class CellAnalysis {
     if (!(gT > 0 && gN > 0)) throw std::domain_error("restricted cell: the chart's Gram matrix is too ill-conditioned");
     const double r = options.graph_radius;
     report_.graph_radius = r_ = r;
+    zero_slab_.assign(k_, Interval{0, 0});
     {
       exact::UpwardRounding up;  // rho = r / sqrt(g) rounded up: |u_a| <= |u| <= |T u| / sqrt(g_T) < rho_u
       rho_u_ = (IA(r) / exact::sqrt(IA(gT))).sup();
@@ -227,6 +233,73 @@ class CellAnalysis {
     for (int l = 0; l < k_; ++l) s -= C.b2[l] * ia(H[l]);
     return s;
   }
+  void discard() { ++report_.discarded; }
+  // True when U x H is outside the ball or some candidate of S or `far` is certainly closer than
+  // p on all of it; else drops from them those certainly farther.
+  bool outside_or_closer(Work& w, const Box& H) const {
+    if (dist2(w.U, H).inf() >= r2_.sup()) return true;
+    for (auto* list : {&w.S, &w.far}) {
+      std::size_t out = 0;
+      for (int i : *list) {
+        const IA s = sign_form(cands_[i], w.U, H);
+        if (s.sup() < 0) return true;
+        if (!(s.inf() > 0)) (*list)[out++] = i;
+      }
+      list->resize(out);
+    }
+    return false;
+  }
+
+  // COMBINED SIGNS. With R = {x in U x H : s_q(x) >= 0 for all q in S and in `far`} (R holds
+  // every point of Vor(p) in the box), for some t >= 0 and two of these candidates A, B:
+  //   * s_A + t s_B < 0 on all of U x H: R is empty (at a point of R both terms are >= 0), and
+  //     the box is discarded (true is returned);
+  //   * s_A - t s_B > 0 on all of U x H (A in S): at a point of R, s_A > t s_B >= 0, so A is
+  //     strictly farther than p at every point of Vor(p) in the box and its sub-boxes (THE SLAB
+  //     INVARIANT holds without it) and moves from S to `far`.
+  // Every statement is about the same R, so the order of the moves does not matter. t is chosen
+  // in floating point, the best for the midpoint coefficients (the bound is piecewise linear in
+  // t, with its extremum at 0 or at a breakpoint); only the interval hull, computed with the
+  // double t (exact), decides.
+  bool combined_signs(std::vector<int>& S, std::vector<int>& far, const Box& U, const Box& H) const {
+    const int d = m_ + k_, n = static_cast<int>(S.size()), all = n + static_cast<int>(far.size());
+    auto at = [&](int i) -> const Candidate& { return cands_[i < n ? S[i] : far[i - n]]; };
+    auto box = [&](int a) -> const Interval& { return a < m_ ? U[a] : H[a - m_]; };
+    auto coef = [&](const Candidate& C, int a) -> const IA& { return a < m_ ? C.a2[a] : C.b2[a - m_]; };
+    // sign -1: is sup (s_A + t s_B) < 0? sign +1: is inf (s_A - t s_B) > 0?
+    auto decides = [&](const Candidate& A, const Candidate& B, double sign) {
+      auto value = [&](double t) {  // sign * (the bound at the midpoint coefficients)
+        double v = A.c.inf() - sign * t * B.c.inf();
+        for (int a = 0; a < d; ++a) {
+          const double g = coef(A, a).inf() - sign * t * coef(B, a).inf();
+          v -= g * box(a).midpoint() + sign * std::abs(g) * 0.5 * box(a).width();
+        }
+        return sign * v;
+      };
+      double best = 0, best_v = 0;
+      for (int a = 0; a < d; ++a) {
+        const double t = sign * coef(A, a).inf() / coef(B, a).inf(), v = t > 0 && std::isfinite(t) ? value(t) : 0;
+        if (v > best_v) best_v = v, best = t;
+      }
+      if (best == 0) return false;
+      const IA T(-sign * best);
+      IA f = A.c + T * B.c;
+      for (int a = 0; a < d; ++a) f -= (coef(A, a) + T * coef(B, a)) * ia(box(a));
+      return sign > 0 ? f.inf() > 0 : f.sup() < 0;
+    };
+    for (int i = 0; i < all; ++i)
+      for (int j = i + 1; j < all; ++j)
+        if (decides(at(i), at(j), -1)) return true;
+    std::vector<char> drop(n, 0);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(at(i), at(j), 1);
+    int kept = 0;
+    for (int i = 0; i < n; ++i)
+      if (drop[i]) far.push_back(S[i]); else S[kept++] = S[i];
+    S.resize(kept);
+    return false;
+  }
+
   // Enclosure of |x - p|^2 = |T u + Nn h|^2 over U x H.
   IA dist2(const Box& U, const Box& H) const {
     IA s(0);
@@ -234,17 +307,6 @@ class CellAnalysis {
       IA t(0);
       for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
       for (int l = 0; l < k_; ++l) t += ia(N_enc_[v * k_ + l]) * ia(H[l]);
-      s += exact::square(t);
-    }
-    return s;
-  }
-  // Enclosure of |T u|^2 over U: dist2(U, H) with H = {0} (the same operations: adding the
-  // exact zero products changes no bound), without building the zero box.
-  IA dist2_tangent(const Box& U) const {
-    IA s(0);
-    for (int v = 0; v < N_; ++v) {
-      IA t(0);
-      for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
       s += exact::square(t);
     }
     return s;
@@ -351,99 +413,86 @@ class CellAnalysis {
     exact::UpwardRounding up;
     // The region: U x Hpar, Hpar = the parent's slab cut to H_ball(U) = [-b, b]^k with
     // b^2 = (r^2 - inf |T u|^2) / g_N >= |Nn h|^2 / g_N >= |h|^2 for x in B(p, r) over U.
-    const IA room = r2_ - dist2_tangent(w.U);
-    if (room.sup() <= 0) {  // |T u| >= r over U: outside the ball
-      ++report_.discarded;
-      return;
-    }
+    const IA room = r2_ - dist2(w.U, zero_slab_);  // |T u|^2 (the zero products add nothing)
+    if (room.sup() <= 0) return discard();  // |T u| >= r over U: outside the ball
     const double b = exact::sqrt(IA(0, room.sup()) / IA(gN_)).sup();
     Box H(k_, Interval{-b, b});
-    if (!w.H.empty() && !intersect(H, w.H)) {  // the parent's slab has nothing over U in the ball
-      ++report_.discarded;
-      return;
-    }
+    if (!w.H.empty() && !intersect(H, w.H)) return discard();  // the parent's slab: nothing over U in the ball
     // Cheap first: the region itself outside the ball or certainly closer to a candidate.
-    if (dist2(w.U, H).inf() >= r2_.sup()) {
-      ++report_.discarded;
-      return;
-    }
     // Candidates certainly farther than p on U x H are dropped here already: H contains every slab
     // used below for this box (the chart's slab is cut to H, the normal halving splits H), and the
     // interval hull of the affine form s_q is inclusion-isotone, so such a q is certainly farther on
-    // each of those regions too and can decide nothing there. The parent's list stays for the second pass.
-    std::vector<int> S_parent = std::move(w.S);
-    w.S.clear();
-    for (int i : S_parent) {
-      const IA s = sign_form(cands_[i], w.U, H);
-      if (s.sup() < 0) {
-        ++report_.discarded;
-        return;
-      }
-      if (!(s.inf() > 0)) w.S.push_back(i);
-    }
-    // The chart's slab replaces it when the rest of the region is excluded (THE SLAB INVARIANT).
-    const exact::ChartResult ch = chart_.enclose(w.U, w.hint);
-    // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
-    // Hc's faces: the difference is taken with Hc widened on each side by twice its width plus the
-    // widest side of U (the enclosure of G on a face loses about |dG/du| width(U), which the
-    // widening must beat) plus 2^-40 (|Hc| + b), then by 16 times that if the difference is not
-    // excluded. Sound for any widening: it only decides how much of the region the chart's slab
-    // takes over.
-    double widest_u = 0;
-    for (const auto& i : w.U) widest_u = std::max(widest_u, i.width());
-    Box Hc;
-    bool chart_slab = false;
-    for (int attempt = 0; attempt < 2 && !chart_slab && ch.status == exact::ChartStatus::unique; ++attempt) {
-      Hc = ch.H;
-      for (auto& i : Hc) {
-        const IA d = (IA(2) * (IA(i.hi) - IA(i.lo)) + IA(widest_u) +
-                      (IA(std::abs(i.lo)) + IA(std::abs(i.hi)) + IA(b)) * IA(0x1p-40)) *
-                     IA(attempt ? 16 : 1);
-        i = Interval{(IA(i.lo) - d).inf(), (IA(i.hi) + d).sup()};
-      }
-      chart_slab = intersect(Hc, H) && difference_excluded(w.U, H, Hc, w.S);
-    }
-    if (chart_slab) {
-      // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
-      // lies in its contraction, which is then the slab (tight covering bounds and signs).
-      // (Parametric Krawczyk: whatever its status, its box holds every root in Hc of every u in U;
-      // `none`: there is none, and the box is free of M.)
-      const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
-      if (tight.status == exact::ChartStatus::none) {
-        ++report_.discarded;
-        return;
-      }
-      H = tight.H;
-    } else {
-      ++report_.chart_failures;
-      if (excluded(w.U, H, w.S, opt_.normal_levels)) {
-        ++report_.discarded;
-        return;
-      }
-    }
-    // The parent's slab and candidates move aside: the second pass revisits the box with them.
-    Box H_in = std::move(w.H);
-    w.H = H;
-    std::vector<int> S_in;
-    IA d2;
-    {
-      if (dist2(w.U, H).inf() >= r2_.sup()) {
-        ++report_.discarded;
-        return;
-      }
-      std::vector<int> kept;
-      for (int i : w.S) {
-        const IA s = sign_form(cands_[i], w.U, H);
-        if (s.sup() < 0) {  // q certainly closer than p on all of U x H
-          ++report_.discarded;
-          return;
+    // each of those regions too and can decide nothing there.
+    if (outside_or_closer(w, H)) return discard();
+    // A parent's slab proved unique by the chart is handed down (THE SLAB INVARIANT: H = Hpar holds
+    // every point of M ∩ B(p, r) ∩ Vor(p) over U) and Krawczyk on U x H contracts it to this box's
+    // own: no Newton guess, no difference test. `none`: no point of M in the region. Any outcome
+    // but a proved unique point takes the full path below on the same region.
+    bool chart_slab = false, unique_slab = false;
+    if (w.unique_slab) {
+      const exact::ChartResult tight = chart_.enclose_in(w.U, H);
+      if (tight.status == exact::ChartStatus::none) return discard();
+      if (tight.status == exact::ChartStatus::unique) {
+        H = tight.H, chart_slab = unique_slab = true;
+        // Where the slope of the chart varies (far from p) one step contracts little: repeat on the
+        // contraction (each result holds the unique point over every u) while a side shrinks by 1/4.
+        for (int again = 0, shrunk = 1; again < 8 && shrunk; ++again) {
+          const exact::ChartResult next = chart_.enclose_in(w.U, H);
+          if (next.status != exact::ChartStatus::unique) break;
+          shrunk = 0;
+          for (int l = 0; l < k_; ++l) shrunk |= next.H[l].width() <= 0.75 * H[l].width();
+          H = next.H;
         }
-        if (!(s.inf() > 0)) kept.push_back(i);
       }
-      w.S = std::move(kept);
-      S_in = std::move(S_parent);
-      d2 = dist2(w.U, H);
     }
+    if (!chart_slab) {
+      // The chart's slab replaces it when the rest of the region is excluded (THE SLAB INVARIANT).
+      // Newton starts from the centre of the parent's slab when it is the chart's, else from p.
+      std::vector<double> hint;
+      if (w.chart_slab)
+        for (const auto& i : w.H) hint.push_back(i.midpoint());
+      const exact::ChartResult ch = chart_.enclose(w.U, hint);
+      // Krawczyk contracts Hc to (nearly) the hull of the piece of M over U, which then touches
+      // Hc's faces: the difference is taken with Hc widened on each side by twice its width plus the
+      // widest side of U (the enclosure of G on a face loses about |dG/du| width(U), which the
+      // widening must beat) plus 2^-40 (|Hc| + b), then by 16 times that if the difference is not
+      // excluded. Sound for any widening: it only decides how much of the region the chart's slab
+      // takes over.
+      double widest_u = 0;
+      for (const auto& i : w.U) widest_u = std::max(widest_u, i.width());
+      Box Hc;
+      for (int attempt = 0; attempt < 2 && !chart_slab && ch.status == exact::ChartStatus::unique; ++attempt) {
+        Hc = ch.H;
+        for (auto& i : Hc) {
+          const IA d = (IA(2) * (IA(i.hi) - IA(i.lo)) + IA(widest_u) +
+                        (IA(std::abs(i.lo)) + IA(std::abs(i.hi)) + IA(b)) * IA(0x1p-40)) *
+                       IA(attempt ? 16 : 1);
+          i = Interval{(IA(i.lo) - d).inf(), (IA(i.hi) + d).sup()};
+        }
+        chart_slab = intersect(Hc, H) && difference_excluded(w.U, H, Hc, w.S);
+      }
+      if (chart_slab) {
+        // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
+        // lies in its contraction, which is then the slab (tight covering bounds and signs).
+        // (Parametric Krawczyk: whatever its status, its box holds every root in Hc of every u in U;
+        // `none`: there is none, and the box is free of M.)
+        const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
+        if (tight.status == exact::ChartStatus::none) return discard();
+        H = tight.H;
+        unique_slab = tight.status == exact::ChartStatus::unique;
+      } else {
+        ++report_.chart_failures;
+        if (excluded(w.U, H, w.S, opt_.normal_levels)) return discard();
+      }
+    }
+    w.H = H;
+    // COMBINED SIGNS where a smaller S saves work: a box that would need Krawczyk or a split, or
+    // any box of the second pass (a smaller S has fewer faces for PURITY).
+    const int s_size = static_cast<int>(w.S.size()), all = s_size + static_cast<int>(w.far.size());
+    if (outside_or_closer(w, H) || (all >= 2 && all <= opt_.combined_signs_max && (refining_ || s_size >= m_) &&
+                                    combined_signs(w.S, w.far, w.U, H)))
+      return discard();
+    const IA d2 = dist2(w.U, H);
     const int n = static_cast<int>(w.S.size()) + 1;
     bool resolved = n <= m_;  // no restricted Voronoi vertex can lie here
     // The candidate sets only shrink down the tree and the regions only shrink (U inside the
@@ -456,13 +505,16 @@ class CellAnalysis {
     // A NaN enclosure (an overflow inside an operation) bounds nothing: +inf, never skipped.
     const double raw_bound = exact::sqrt(d2).sup();
     const double bound = std::isnan(raw_bound) ? INFINITY : raw_bound;
-    const bool fine = n == 1 || widest <= opt_.covering_width * rho_u_ || w.depth >= opt_.max_depth ||
+    // A box with `far` candidates may still hold parts outside the cell that their bisectors cut
+    // off (a box with all of them in S would be split on): one more halving for its bound.
+    const double fine_width = opt_.covering_width * rho_u_ * (w.far.empty() ? 1 : 0.5);
+    const bool fine = (n == 1 && w.far.empty()) || widest <= fine_width || w.depth >= opt_.max_depth ||
                       (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
     // First pass: every resolved box with another candidate waits for the second pass, where the
     // vertices of the cell are known and PURITY can be checked.
+    // It keeps its own slab and lists (THE SLAB INVARIANT holds for them on its own box).
     if (resolved && !refining_ && (!fine || n >= 2)) {
-      w.H = std::move(H_in);
-      w.S = std::move(S_in);
+      w.chart_slab = chart_slab, w.unique_slab = unique_slab;
       pending_.push_back(std::move(w));
       return;
     }
@@ -488,25 +540,24 @@ class CellAnalysis {
                            : (chart_slab ? "Krawczyk undecided at the depth limit" : "no chart enclosure at the depth limit"));
       return;
     }
-    // Split every side at its midpoint; children pushed in reverse so that the first is visited first.
-    std::vector<double> hint(k_);
-    for (int l = 0; l < k_; ++l) hint[l] = H[l].midpoint();
-    std::vector<Work> children;
-    for (int corner = 0; corner < (1 << m_); ++corner) {
+    // Split every side at its midpoint; children pushed in reverse so that the first is visited
+    // first (the last one pushed takes the parent's lists).
+    for (int corner = (1 << m_) - 1; corner >= 0; --corner) {
       Work c;
       c.U = w.U;
       for (int a = 0; a < m_; ++a) {
         const double mid = w.U[a].midpoint();
         c.U[a] = (corner >> a) & 1 ? Interval{mid, w.U[a].hi} : Interval{w.U[a].lo, mid};
       }
-      c.S = w.S;
-      c.H = w.H;
+      c.S = corner ? w.S : std::move(w.S);
+      c.far = corner ? w.far : std::move(w.far);
+      c.H = corner ? w.H : std::move(w.H);
       c.depth = w.depth + 1;
       c.vertex_decided = w.vertex_decided;
-      if (chart_slab) c.hint = hint;
-      children.push_back(std::move(c));
+      c.chart_slab = chart_slab;
+      c.unique_slab = unique_slab;
+      stack.push_back(std::move(c));
     }
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(std::move(*it));
   }
 
   // Krawczyk on {G = 0, s_{q_i} = 0} in U x H. True when decided (a vertex recorded, or none).
@@ -620,6 +671,7 @@ class CellAnalysis {
   exact::ChartEnclosure chart_;
   int N_, m_, k_;
   std::vector<Interval> T_enc_, N_enc_;
+  Box zero_slab_;  // k times [0, 0]
   double r_ = 0, rho_u_ = 0, gN_ = 0;
   IA r2_;                                        // r^2, enclosed
   std::vector<exact::Polynomial> G_;                    // the chart equations G(u, h)

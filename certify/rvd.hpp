@@ -21,7 +21,8 @@
 // THE SLAB INVARIANT. Each box U of the subdivision of U0 carries a normal slab H_eff(U) and a
 // candidate set S(U) such that every point x of M ∩ B(p, r) ∩ Vor(p) with parameter u in U has its
 // normal coordinate in H_eff(U), and every point of P outside S(U) + {p} is strictly farther than
-// p from every point of U x H_eff(U). At the root, H_eff = H_ball(U0) and S = the points of the
+// p from every point of Vor(p) ∩ (U x H_eff(U)) (Vor(p) the ambient Voronoi cell; both statements
+// pass to sub-boxes). At the root, H_eff = H_ball(U0) and S = the points of the
 // closed ball B(p, 2r) (if x in B(p, r) has d(x, q) <= d(x, p) then |q - p| <= 2 d(x, p) < 2r).
 // For a child box U, let Hpar = H_eff(parent) ∩ H_ball(U) (still holds every such x: U lies in
 // the parent's box). When exact::ChartEnclosure proves a unique point of M over every u in U in a
@@ -34,7 +35,11 @@
 // (options.normal_levels times). Then q is dropped from S when certainly farther than p on
 // U x H_eff (sign of the affine form |q|^2 - |p|^2 - 2 x.(q - p), interval arithmetic under
 // upward rounding); U is discarded when U x H_eff is excluded (outside the ball, or a candidate
-// certainly closer; with a slab that is not the chart's, also after the normal halving).
+// certainly closer; with a slab that is not the chart's, also after the normal halving). COMBINED
+// SIGNS (rvd.cpp), with candidates A, B and t >= 0: U is discarded when s_A + t s_B < 0 on U x H_eff,
+// and A is dropped when s_A - t s_B > 0 there (A strictly farther than p wherever B is not closer).
+// A child box whose parent's slab is the chart's starts from it: Krawczyk on U x Hpar contracts
+// it to the child's own slab (no new guess, no difference test: Hpar already holds the invariant).
 //   * a box with |S(U)| <= m holds no restricted Voronoi vertex (a vertex needs m + 1 nearest
 //     points, all of which are in S(U) + {p}); with |S(U)| = m + 1 and the chart's slab, Krawczyk
 //     on the N x N system {G(u, h) = 0, d(x, q_i)^2 = d(x, p)^2 (i = 1..m)} in U x H_eff proves
@@ -79,6 +84,9 @@ struct RestrictedCellOptions {
   double purity_width = 0x1p-20;
   // Where the chart fails, the normal slab H_ball(U) is searched by halving up to this many times.
   int normal_levels = 6;
+  // COMBINED SIGNS are tried on boxes with at most this many candidates besides p (their cost
+  // grows with its square; larger boxes rarely gain). Work only.
+  int combined_signs_max = 8;
 };
 
 struct RestrictedVoronoiVertex {
