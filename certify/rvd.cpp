@@ -488,9 +488,9 @@ class CellAnalysis {
     w.H = H;
     // COMBINED SIGNS where a smaller S saves work: a box that would need Krawczyk or a split, or
     // any box of the second pass (a smaller S has fewer faces for PURITY).
+    if (outside_or_closer(w, H)) return discard();
     const int s_size = static_cast<int>(w.S.size()), all = s_size + static_cast<int>(w.far.size());
-    if (outside_or_closer(w, H) || (all >= 2 && all <= opt_.combined_signs_max && (refining_ || s_size >= m_) &&
-                                    combined_signs(w.S, w.far, w.U, H)))
+    if (all >= 2 && all <= opt_.combined_signs_max && (refining_ || s_size >= m_) && combined_signs(w.S, w.far, w.U, H))
       return discard();
     const IA d2 = dist2(w.U, H);
     const int n = static_cast<int>(w.S.size()) + 1;
