@@ -71,11 +71,11 @@ io::PointSet fibonacci_points(int n) {
 struct SecureRun {
   TempDir dir{"secure"};
   CertifyOptions o;
-  explicit SecureRun(const io::PointSet& P, bool claim) {
+  SecureRun(const io::PointSet& P, bool claim, const std::string& manifold = "builtin:sphere-2") {
     write_text(dir.file("points.txt"), io::format_points(P));
     write_text(dir.file("claims.json"), claim ? "{\"format\": \"delcert-claims v2\", \"secure\": true}\n"
                                               : "{\"format\": \"delcert-claims v2\"}\n");
-    o.manifold = "builtin:sphere-2";
+    o.manifold = manifold;
     o.points = dir.file("points.txt");
     o.claims = dir.file("claims.json");
     o.threads = 2;
@@ -138,6 +138,45 @@ TEST(SecureSimplices, ClaimedIsDecidedWithTheCertifiedCoveringRadiusAndTheWitnes
     ++rechecked;
   }
   EXPECT_GT(rechecked, 0);
+}
+
+// A nearly hexagonal lattice on the Clifford torus (unit circles): rows of 13 points at 15 values
+// of the second angle, every other row shifted by half a step (15/13 is within 0.1% of 2/sqrt 3),
+// each angle moved by up to `jitter` / 2.
+io::PointSet hexagonal_torus(double jitter) {
+  Rng rng(7);
+  io::PointSet P;
+  P.dimension = 4;
+  for (int j = 0; j < 15; ++j)
+    for (int i = 0; i < 13; ++i) {
+      const double a = 2 * M_PI * (i + 0.5 * (j % 2)) / 13 + jitter * (rng.uniform() - 0.5);
+      const double b = 2 * M_PI * j / 15 + jitter * (rng.uniform() - 0.5);
+      P.push_back(std::vector<double>{std::cos(a), std::sin(a), std::cos(b), std::sin(b)});
+    }
+  return P;
+}
+
+TEST(SecureSimplices, ClaimedIsCertifiedOnANearlyHexagonalTorusAndNeverOnTheExactLattice) {
+  // Jittered by 1e-4: every star simplex secure with eps the certified covering radius, so check 7
+  // is CERTIFIED and so is the whole certificate (the REFUTED side: the Fibonacci test above).
+  SecureRun good(hexagonal_torus(1e-4), true, "builtin:clifford-torus-2");
+  const Certificate c = run_certify(good.o);
+  ASSERT_EQ(check(c, CheckId::covering).verdict, Verdict::certified) << check(c, CheckId::covering).summary;
+  const CheckEntry& e = check(c, CheckId::secure_simplices);
+  EXPECT_EQ(e.verdict, Verdict::certified) << e.summary;
+  EXPECT_NE(e.summary.find("1170 of 1170"), std::string::npos) << e.summary;
+  EXPECT_TRUE(e.witnesses.empty());
+  const double eps = exact::parse_rational(e.details["parameters"]["eps"].get<std::string>()).get_d();
+  EXPECT_GE(eps, std::stod(check(c, CheckId::covering).margin["covering_radius"]["certified_upper_bound"].get<std::string>()));
+  EXPECT_EQ(c.overall(), Verdict::certified);
+
+  // The exact lattice (15 rows of identical (x3, x4), 13 points a row) has exact ties: no positive
+  // protection margin and no certified covering radius, and check 7 is not CERTIFIED.
+  SecureRun exact_lattice(hexagonal_torus(0), true, "builtin:clifford-torus-2");
+  const Certificate d = run_certify(exact_lattice.o);
+  EXPECT_NE(check(d, CheckId::covering).verdict, Verdict::certified);
+  EXPECT_EQ(check(d, CheckId::secure_simplices).verdict, Verdict::undecided) << check(d, CheckId::secure_simplices).summary;
+  EXPECT_NE(d.overall(), Verdict::certified);
 }
 
 TEST(SecureSimplices, UnclaimedIsAReportAndWithoutACertifiedCoveringRadiusUndecided) {
