@@ -65,8 +65,7 @@ mpq_class smallest_eigenvalue_bound(const std::vector<mpq_class>& A, int rows, i
 // enclosures of c, 2a and 2b, computed in interval arithmetic from the coordinates (the enclosure
 // of d = q - p holds the exact difference of the two doubles; T_enc, N_enc hold the exact bases),
 // so they hold the exact values; an overflow gives an infinite or NaN bound, which decides nothing.
-// The exact rationals are computed only for the few candidates that enter a Krawczyk system
-// (krawczyk_vertex).
+// Exact rationals only for the few candidates that enter a Krawczyk system (krawczyk_vertex).
 struct Candidate {
   int index = -1;
   IA c;
@@ -587,15 +586,19 @@ class CellAnalysis {
     UH.insert(UH.end(), H.begin(), H.end());
     ++report_.krawczyk_calls;
     const exact::KrawczykResult kr = exact::krawczyk(it->second, UH);
-    if (kr.status == exact::RootStatus::undecided) {
+    // A tight root (each side at most 1/8 of the box's; else splitting gives a sharper one) proved
+    // unique around this box decides it too (it holds that root or none): a vertex on a split plane.
+    bool nearby = kr.status == exact::RootStatus::undecided && kr.nearby_root;
+    for (std::size_t i = 0; nearby && i < UH.size(); ++i) nearby = (*kr.nearby_root)[i].width() <= UH[i].width() / 8;
+    if (kr.status == exact::RootStatus::undecided && !nearby) {
       ++report_.krawczyk_failures;
       return false;
     }
-    if (kr.status == exact::RootStatus::unique_root) {
-      const Box U(kr.box.begin(), kr.box.begin() + m_), Hv(kr.box.begin() + m_, kr.box.end());
+    if (kr.status != exact::RootStatus::no_root) {
+      const Box& root = kr.nearby_root ? *kr.nearby_root : kr.box;
+      const Box U(root.begin(), root.begin() + m_), Hv(root.begin() + m_, root.end());
       Box X;
-      if (!chart_.image(U, Hv, X)) return false;
-      if (!separated(simplex, X)) return false;
+      if (!chart_.image(U, Hv, X) || !separated(simplex, X)) return false;
       report_.vertices.push_back({simplex, std::move(X)});
     }
     return true;
@@ -626,12 +629,6 @@ class CellAnalysis {
     return true;
   }
 
-  static bool overlap(const Box& a, const Box& b) {
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (a[i].hi < b[i].lo || b[i].hi < a[i].lo) return false;
-    return true;
-  }
-
   // Sort the vertices; a root on a face shared by two boxes is found twice: of overlapping
   // enclosures of the same simplex keep the first (each holds a genuine vertex; for Del_RM only
   // the simplex matters, and two distinct vertices of one simplex this close are not told apart).
@@ -645,10 +642,12 @@ class CellAnalysis {
     });
     std::vector<RestrictedVoronoiVertex> out;
     for (auto& v : V) {
-      bool dup = false;
-      for (auto& o : out)
-        if (o.simplex == v.simplex && overlap(o.x, v.x)) dup = true;
-      if (!dup) out.push_back(std::move(v));
+      auto same = [&](const RestrictedVoronoiVertex& o) {  // the same simplex, overlapping enclosures
+        for (std::size_t i = 0; i < v.x.size(); ++i)
+          if (o.x[i].hi < v.x[i].lo || v.x[i].hi < o.x[i].lo) return false;
+        return o.simplex == v.simplex;
+      };
+      if (std::none_of(out.begin(), out.end(), same)) out.push_back(std::move(v));
     }
     V = std::move(out);
     if (V.empty() && report_.kept > 0)

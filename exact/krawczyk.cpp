@@ -345,6 +345,7 @@ KrawczykResult to_result(Attempt a) {
   r.status = a.status;
   r.box = std::move(a.box);
   r.iterations = a.iterations;
+  if (a.status == RootStatus::undecided && a.root) r.nearby_root = std::move(a.root);
   return r;
 }
 

@@ -47,6 +47,7 @@
 
 #include <memory>
 #include <span>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -113,6 +114,10 @@ struct KrawczykResult {
   // no_root: the input box.
   Box box;
   int iterations = 0;
+  // undecided only, when set: epsilon inflation proved exactly one root r of F in a box that
+  // contains every root of F in the input box (a root on the input box's boundary, or just
+  // outside it), and r lies in this box. So the input box holds r or no root at all.
+  std::optional<Box> nearby_root;
 };
 
 // Throws std::invalid_argument for a box of the wrong dimension or with non-finite or empty

@@ -234,6 +234,38 @@ TEST(RestrictedCell, CombinedSignsChangeTheWorkNotTheAnswer) {
   }
 }
 
+TEST(RestrictedCell, AVertexOnASplitPlaneIsDecided) {
+  // A hexagonal lattice on the Clifford torus, 26 points in each of 30 rows (every other row
+  // shifted by half a step). Each row has identical (x3, x4), and at point 0 = (1, 0, 1, 0) the
+  // chart coordinate u1 = 2 x2 of the vertices beside the row is -sin(pi / 26) * 2 = -(the row's
+  // chord) = -r / 2 for the radius r = 2 x the nearest distance: exactly a split plane at every
+  // depth. Epsilon inflation proves the vertex in a box around the two that share the plane;
+  // each of them is then decided (it holds that vertex or none), and no box is left undecided.
+  std::vector<std::vector<double>> pts;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 26; ++i) {
+      const double a = 2 * M_PI * (i + 0.5 * (j % 2)) / 26, b = 2 * M_PI * j / 30;
+      pts.push_back({std::cos(a), std::sin(a), std::cos(b), std::sin(b)});
+    }
+  const io::PointSet P = make_points(4, pts);
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 - 1", "x3^2 + x4^2 - 1"}, 4);
+  const detail::PointGrid grid(P, 2);
+  double nearest = INFINITY;
+  for (int q = 1; q < static_cast<int>(P.size()); ++q) {
+    double d = 0;
+    for (int k = 0; k < 4; ++k) d += std::pow(P.point(q)[k] - P.point(0)[k], 2);
+    nearest = std::min(nearest, std::sqrt(d));
+  }
+  RestrictedCellOptions opt;
+  opt.graph_radius = 2 * nearest;
+  for (int p : {0, 1, 26, 27}) {
+    const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, p, opt);
+    EXPECT_TRUE(R.complete) << p << ": " << R.reason;
+    EXPECT_EQ(R.krawczyk_failures, 0) << p;
+    EXPECT_EQ(R.vertices.size(), 6u) << p;  // a hexagonal cell
+  }
+}
+
 TEST(RestrictedCell, CubeOnItsSphereIsNeverDecided) {
   // Exactly degenerate: the centre of each face of the cube is equidistant from its 4 vertices.
   std::vector<std::vector<double>> pts;

@@ -105,6 +105,33 @@ TEST(Krawczyk, SingleBoxAnswers) {
   EXPECT_TRUE(rounding_is_nearest());
 }
 
+TEST(Krawczyk, ARootOnTheBoxBoundaryIsANearbyRoot) {
+  // The root (sqrt 2, 0) of {x1^2 - 2, x2} lies within an ulp of the plane x1 = s = sqrt(2.0) (the
+  // double) that splits [1, 2] x [-1, 1]. Neither half holds it strictly inside a contraction;
+  // each half is then decided by Krawczyk (unique root, or none) or reports the root proved unique
+  // in a box around it (`nearby_root`, tight): it holds that root or nothing. Never plainly
+  // undecided, and the root is reported by at least one half.
+  SquareSystem S = parse_system({"x1^2 - 2", "x2"});
+  const double s = std::sqrt(2.0);
+  int reported = 0;
+  for (const Box& B : {Box{{1, s}, {-1, 1}}, Box{{s, 2}, {-1, 1}}}) {
+    auto r = krawczyk(S, B);
+    ASSERT_TRUE(r.status != RootStatus::undecided || r.nearby_root.has_value());
+    if (r.status == RootStatus::no_root) continue;
+    const Box& root = r.status == RootStatus::unique_root ? r.box : *r.nearby_root;
+    EXPECT_LE(root[0].lo, s);  // encloses sqrt 2, within a few ulps of s
+    EXPECT_GE(root[0].hi, s);
+    EXPECT_LT(root[0].width(), 1e-12);
+    ++reported;
+  }
+  EXPECT_GE(reported, 1);
+  // Strictly inside: unique, no nearby root; far away: no root, no nearby root.
+  EXPECT_FALSE(krawczyk(S, Box{{1.25, 1.5}, {-1, 1}}).nearby_root.has_value());
+  auto far = krawczyk(S, Box{{2, 3}, {2, 3}});
+  EXPECT_EQ(far.status, RootStatus::no_root);
+  EXPECT_FALSE(far.nearby_root.has_value());
+}
+
 TEST(Krawczyk, TangencyIsUndecided) {
   // The line y = 1 touches the unit circle at (0, 1): a double root, never certified unique.
   SquareSystem S = parse_system({"x1^2 + x2^2 - 1", "x2 - 1"});
