@@ -289,7 +289,7 @@ class CellAnalysis {
     for (int i = 0; i < all; ++i)
       for (int j = i + 1; j < all; ++j)
         if (decides(at(i), at(j), -1)) return true;
-    std::vector<char> drop(n, 0);
+    SmallBuffer<char, 64> drop(n);  // zero-initialised, no heap for the usual sizes (most boxes)
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(at(i), at(j), 1);
     int kept = 0;
