@@ -70,6 +70,7 @@ struct Candidate {
   int index = -1;
   IA c;
   std::vector<IA> a2, b2;  // 2 a (m of them) and 2 b (k of them)
+  bool finite = false;     // every bound above is finite
 };
 
 struct Work {
@@ -151,6 +152,10 @@ class CellAnalysis {
         for (int v = 0; v < N_; ++v) t += ia(N_enc_[v * k_ + l]) * d[v];
         C.b2[l] = IA(2) * t;
       }
+      auto finite = [](const IA& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); };
+      C.finite = finite(C.c);
+      for (const IA& x : C.a2) C.finite = C.finite && finite(x);
+      for (const IA& x : C.b2) C.finite = C.finite && finite(x);
       cands_.push_back(std::move(C));
     }
   }
@@ -564,23 +569,22 @@ class CellAnalysis {
     const std::vector<int> simplex = simplex_of(w.S);
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
-      // The chart's rows G(u, h) (shared), then s_q = c - 2 a.u - 2 b.h for each q, in exact
-      // rationals (see Candidate).
-      std::vector<exact::Polynomial> rows;
-      const std::span<const double> pp = points_.point(p_);
-      std::vector<mpq_class> d(N_), linear(m_ + k_);
+      // The chart's rows G(u, h) (shared), then s_q = c - 2 a.u - 2 b.h for each q, known by the
+      // candidate's enclosures (which hold the exact values, see Candidate): Krawczyk answers
+      // for every affine row within them, the true one included (SquareSystem::with_enclosed_rows).
+      std::vector<exact::SquareSystem::AffineEnclosure> rows;
       for (int i : w.S) {
-        const std::span<const double> qq = points_.point(cands_[i].index);
-        mpq_class c = 0;
-        for (int v = 0; v < N_; ++v) d[v] = exact::to_rational(qq[v]) - exact::to_rational(pp[v]), c += d[v] * d[v];
-        for (int j = 0; j < m_ + k_; ++j) {
-          linear[j] = 0;
-          for (int v = 0; v < N_; ++v) linear[j] -= (j < m_ ? chart_.tangent(v, j) : chart_.normal(v, j - m_)) * d[v];
-          linear[j] *= 2;
+        const Candidate& C = cands_[i];
+        if (!C.finite) {  // an overflow decides nothing
+          ++report_.krawczyk_failures;
+          return false;
         }
-        rows.push_back(exact::Polynomial::affine(c, linear));
+        exact::SquareSystem::AffineEnclosure row{exact::Interval{C.c.inf(), C.c.sup()}, {}};
+        for (const IA& a : C.a2) row.linear.push_back({-a.sup(), -a.inf()});
+        for (const IA& b : C.b2) row.linear.push_back({-b.sup(), -b.inf()});
+        rows.push_back(std::move(row));
       }
-      it = systems_.emplace(simplex, exact::SquareSystem(chart_.chart_system(), std::move(rows))).first;
+      it = systems_.emplace(simplex, exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(rows))).first;
     }
     Box UH = w.U;
     UH.insert(UH.end(), H.begin(), H.end());

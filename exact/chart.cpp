@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -47,14 +48,19 @@ Polynomial substitute_affine(const Polynomial& f, const std::vector<Polynomial>&
   auto power = [&](std::size_t v, std::uint32_t e) -> const Polynomial& {
     auto& pw = powers[v];
     if (pw.empty()) pw.push_back(Polynomial::constant(1, vars));
-    while (pw.size() <= e) pw.push_back(pw.back() * A[v]);
+    while (pw.size() <= e) pw.push_back(pw.size() == 1 ? A[v] : pw.back() * A[v]);
     return pw[e];
   };
   for (const auto& t : f.terms()) {
-    Polynomial prod = Polynomial::constant(t.coefficient, vars);
+    // The product of the powers, then one scaling by the coefficient (a term-wise product, not a
+    // polynomial product with a constant).
+    std::optional<Polynomial> prod;
     for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v)
-      if (t.monomial.exponents[v] > 0) prod = prod * power(v, t.monomial.exponents[v]);
-    out += std::move(prod);  // a linear merge (both sorted), not a re-sort of the sum
+      if (t.monomial.exponents[v] > 0) {
+        const Polynomial& pw = power(v, t.monomial.exponents[v]);
+        prod = prod ? *prod * pw : pw;
+      }
+    out += prod ? prod->scaled(t.coefficient) : Polynomial::constant(t.coefficient, vars);  // linear merges
   }
   return out;
 }

@@ -19,9 +19,13 @@ using detail::IA;
 
 // A polynomial with the enclosures of its coefficients, prepared once and shared (immutable)
 // between the systems that hold it (SquareSystem(head, tail) shares the head's rows).
+// An ENCLOSED AFFINE row (SquareSystem::with_enclosed_rows) has no exact polynomial:
+// coef[0] encloses its constant and coef[1 + j] its coefficient of variable j (a derivative row
+// of it is the constant coef[0] alone).
 struct Prepared {
-  Polynomial p;
+  Polynomial p;  // the exact polynomial (empty for an enclosed affine row)
   std::vector<Interval> coef;
+  bool enclosed_affine = false;
 };
 using PreparedPtr = std::shared_ptr<const Prepared>;
 
@@ -44,7 +48,19 @@ PreparedPtr prepare(Polynomial p) {
   return std::make_shared<const Prepared>(Prepared{std::move(p), std::move(coef)});
 }
 
-IA evaluate(const PreparedPtr& p, std::span<const IA> x) { return detail::evaluate(p->p, p->coef, x); }
+// Encloses the row over the box x (the caller holds upward rounding). An enclosed affine row
+// c + l.x: for every choice of c and l in their enclosures and x in the box, the value lies in
+// the interval sum of products (inclusion isotonicity), so it encloses the true row too.
+IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
+  if (!p->enclosed_affine) return detail::evaluate(p->p, p->coef, x);
+  IA acc = detail::to_ia(p->coef[0]);
+  for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
+  return acc;
+}
+
+PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
+  return std::make_shared<const Prepared>(Prepared{Polynomial(), std::move(coef), true});
+}
 
 // Checks n equations in `vars` variables; `what` names the system in error messages.
 void check_shape(const std::vector<Polynomial>& equations, int n, int m, const char* what) {
@@ -83,7 +99,11 @@ std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> eq
 
 std::vector<Polynomial> polynomials(const std::vector<PreparedPtr>& f) {
   std::vector<Polynomial> out;
-  for (const auto& p : f) out.push_back(p->p);
+  for (const auto& p : f) {
+    if (p->enclosed_affine)
+      throw std::logic_error("square system: a row given by coefficient enclosures has no exact polynomial");
+    out.push_back(p->p);
+  }
   return out;
 }
 
@@ -113,6 +133,34 @@ SquareSystem::SquareSystem(const ParametricSystem& head, std::vector<Polynomial>
     for (int j = 0; j < n; ++j) impl->df.push_back(prepare(impl->f.back()->p.derivative(j)));
   }
   impl_ = std::move(impl);
+}
+
+SquareSystem SquareSystem::with_enclosed_rows(const ParametricSystem& head, std::vector<AffineEnclosure> tail) {
+  const SquareSystem::Impl& H = head.impl();
+  const int n = H.n + static_cast<int>(tail.size()), vars = H.m + H.n;
+  if (n != vars)
+    throw std::invalid_argument("square system: " + std::to_string(H.n) + " + " + std::to_string(tail.size()) +
+                                " equations in " + std::to_string(vars) + " variables");
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  impl->n = n;
+  impl->f = H.f;
+  for (int i = 0; i < H.n; ++i) {
+    for (int a = 0; a < H.m; ++a) impl->df.push_back(H.du[i * H.m + a]);
+    for (int j = 0; j < H.n; ++j) impl->df.push_back(H.df[i * H.n + j]);
+  }
+  for (auto& row : tail) {
+    if (static_cast<int>(row.linear.size()) != n)
+      throw std::invalid_argument("square system: an affine row has " + std::to_string(row.linear.size()) +
+                                  " coefficients, expected " + std::to_string(n));
+    std::vector<Interval> coef{row.constant};
+    coef.insert(coef.end(), row.linear.begin(), row.linear.end());
+    for (const Interval& c : coef)
+      if (!(std::isfinite(c.lo) && std::isfinite(c.hi) && c.lo <= c.hi))
+        throw std::invalid_argument("square system: an affine row has a non-finite or empty coefficient enclosure");
+    for (int j = 0; j < n; ++j) impl->df.push_back(prepare_enclosed({row.linear[j]}));
+    impl->f.push_back(prepare_enclosed(std::move(coef)));
+  }
+  return SquareSystem(std::shared_ptr<const Impl>(std::move(impl)));
 }
 
 ParametricSystem::ParametricSystem(std::vector<Polynomial> equations, int num_parameters)

@@ -70,13 +70,30 @@ class SquareSystem {
   // vertex systems of one cell all start with the chart's equations). Throws
   // std::invalid_argument unless tail has m equations in m + n variables.
   SquareSystem(const ParametricSystem& head, std::vector<Polynomial> tail);
+  // As the constructor above, with tail rows known only by ENCLOSURES of their coefficients: row
+  // i is some affine function c_i + l_i . z (z the m + n variables) with c_i in `constant` and
+  // each l_ij in `linear[j]`. krawczyk() then answers for EVERY such choice at once (every claim below holds
+  // for each of them, hence for the true one): for a fixed choice, its rows' values and
+  // derivatives lie in the interval evaluations used (inclusion isotonicity), so its own
+  // Krawczyk operator, with the same centre and preconditioner, lies inside the computed one, and
+  // the argument of the parametric version below applies unchanged. (The restricted Voronoi
+  // vertex systems: the equidistance rows are enclosed from the doubles of the points, with no
+  // rational arithmetic.) Throws std::invalid_argument unless tail has m rows of m + n finite,
+  // non-empty coefficients.
+  struct AffineEnclosure {
+    Interval constant;
+    std::vector<Interval> linear;
+  };
+  static SquareSystem with_enclosed_rows(const ParametricSystem& head, std::vector<AffineEnclosure> tail);
   int size() const;
+  // Throws std::logic_error for a system with enclosed affine rows (it has no exact equations).
   std::vector<Polynomial> equations() const;
 
   struct Impl;
   const Impl& impl() const { return *impl_; }
 
  private:
+  explicit SquareSystem(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const Impl> impl_;
 };
 
