@@ -25,41 +25,6 @@ using IA = exact::IntervalNumber;
 
 IA ia(const Interval& i) { return exact::to_interval_number(i); }
 
-// A certified lower bound (> 0) of the smallest eigenvalue of the exact Gram matrix of the
-// columns of A (rows x cols): the larger of Gershgorin's bound and det / trace^(cols - 1) (the
-// product of the other eigenvalues is at most trace^(cols - 1)). Throws std::domain_error when
-// neither is positive.
-mpq_class smallest_eigenvalue_bound(const std::vector<mpq_class>& A, int rows, int cols) {
-  std::vector<mpq_class> G(static_cast<std::size_t>(cols) * cols);
-  for (int a = 0; a < cols; ++a)
-    for (int b = 0; b < cols; ++b)
-      for (int v = 0; v < rows; ++v) G[a * cols + b] += A[v * cols + a] * A[v * cols + b];
-  mpq_class gersh = -1, trace = 0;
-  for (int a = 0; a < cols; ++a) {
-    mpq_class row = G[a * cols + a];
-    for (int b = 0; b < cols; ++b)
-      if (b != a) row -= abs(G[a * cols + b]);
-    if (a == 0 || row < gersh) gersh = row;
-    trace += G[a * cols + a];
-  }
-  // det G by exact Gaussian elimination (G is positive semidefinite: a zero pivot means det 0).
-  std::vector<mpq_class> E = G;
-  mpq_class det = 1;
-  for (int c = 0; c < cols && det != 0; ++c) {
-    det *= E[c * cols + c];
-    if (det == 0) break;
-    for (int r = c + 1; r < cols; ++r) {
-      const mpq_class f = E[r * cols + c] / E[c * cols + c];
-      for (int j = c; j < cols; ++j) E[r * cols + j] -= f * E[c * cols + j];
-    }
-  }
-  mpq_class bound = det;
-  for (int i = 1; i < cols; ++i) bound /= trace;
-  bound = std::max(bound, gersh);
-  if (bound <= 0) throw std::domain_error("restricted cell: cannot bound the chart's Gram matrix away from 0");
-  return bound;
-}
-
 // A candidate q relative to p: s_q(u, h) = |q|^2 - |p|^2 - 2 x.(q - p) = c - 2 a.u - 2 b.h with
 // d = q - p, c = |d|^2, a = T^T d, b = Nn^T d (x = p + T u + Nn h). The subdivision needs only
 // enclosures of c, 2a and 2b, computed in interval arithmetic from the coordinates (the enclosure
@@ -97,14 +62,11 @@ class CellAnalysis {
         chart_(exact::ChartEnclosure::at(system, points.point(p))),
         N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
     if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
-    std::vector<mpq_class> T(N_ * m_), Nn(N_ * k_);
-    for (int v = 0; v < N_; ++v) {
-      for (int a = 0; a < m_; ++a) T[v * m_ + a] = chart_.tangent(v, a), T_enc_.push_back(exact::enclose(T[v * m_ + a]));
-      for (int l = 0; l < k_; ++l) Nn[v * k_ + l] = chart_.normal(v, l), N_enc_.push_back(exact::enclose(Nn[v * k_ + l]));
-    }
-    const double gT = exact::enclose(smallest_eigenvalue_bound(T, N_, m_)).lo;
-    const double gN = gN_ = exact::enclose(smallest_eigenvalue_bound(Nn, N_, k_)).lo;
-    if (!(gT > 0 && gN > 0)) throw std::domain_error("restricted cell: the chart's Gram matrix is too ill-conditioned");
+    T_enc_ = chart_.tangent_enclosure();
+    N_enc_ = chart_.normal_enclosure();
+    const exact::ChartEnclosure::GramBounds gram = chart_.gram_bounds();
+    const double gT = gram.tangent;
+    gN_ = gram.normal;
     const double r = options.graph_radius;
     report_.graph_radius = r_ = r;
     zero_slab_.assign(k_, Interval{0, 0});
@@ -112,18 +74,6 @@ class CellAnalysis {
       exact::UpwardRounding up;  // rho = r / sqrt(g) rounded up: |u_a| <= |u| <= |T u| / sqrt(g_T) < rho_u
       rho_u_ = (IA(r) / exact::sqrt(IA(gT))).sup();
       r2_ = IA(r) * IA(r);
-    }
-    G_ = chart_.chart_system().equations();
-    for (const auto& g : G_) {
-      G_coef_.emplace_back();
-      for (const auto& t : g.terms()) G_coef_.back().push_back(exact::enclose(t.coefficient));
-      dG_.emplace_back();
-      dG_coef_.emplace_back();
-      for (int l = 0; l < k_; ++l) {
-        dG_.back().push_back(g.derivative(m_ + l));
-        dG_coef_.back().emplace_back();
-        for (const auto& t : dG_.back().back().terms()) dG_coef_.back().back().push_back(exact::enclose(t.coefficient));
-      }
     }
     // Candidates: every point of the closed ball B(p, 2r) (see the header); 2r is exact.
     const std::span<const double> pp = points.point(p);
@@ -341,23 +291,21 @@ class CellAnalysis {
   // between values on the faces). The face test sees the sign near a slab edge that the plain
   // enclosure of a wide box loses. Under upward rounding.
   bool free_of_M(const Box& U, const Box& H) const {
-    SmallBuffer<IA, 16> z(m_ + k_), face(m_ + k_);
-    for (int a = 0; a < m_; ++a) z[a] = ia(U[a]);
-    for (int l = 0; l < k_; ++l) z[m_ + l] = ia(H[l]);
-    auto eval = [&](const exact::Polynomial& P, const std::vector<Interval>& coef, std::span<const IA> at) {
-      return P.evaluate_with<IA>(at, [&](std::size_t t) { return ia(coef[t]); });
-    };
-    auto strict = [](const IA& g) { return g.inf() > 0 || g.sup() < 0; };
-    for (std::size_t e = 0; e < G_.size(); ++e) {
-      if (strict(eval(G_[e], G_coef_[e], z.span()))) return true;
+    SmallBuffer<Interval, 16> z(m_ + k_), face(m_ + k_);
+    std::copy(U.begin(), U.end(), z.begin());
+    std::copy(H.begin(), H.end(), z.begin() + m_);
+    const exact::ParametricSystem& G = chart_.chart_system();
+    auto strict = [](const Interval& g) { return g.lo > 0 || g.hi < 0; };
+    for (int e = 0; e < k_; ++e) {
+      if (strict(G.enclose(e, z.span()))) return true;
       for (int l = 0; l < k_; ++l) {
-        if (!strict(eval(dG_[e][l], dG_coef_[e][l], z.span()))) continue;
+        if (!strict(G.enclose_derivative(e, l, z.span()))) continue;
         std::copy(z.begin(), z.end(), face.begin());
-        face[m_ + l] = IA(H[l].lo);
-        const IA a = eval(G_[e], G_coef_[e], face.span());
-        face[m_ + l] = IA(H[l].hi);
-        const IA b = eval(G_[e], G_coef_[e], face.span());
-        if ((a.inf() > 0 && b.inf() > 0) || (a.sup() < 0 && b.sup() < 0)) return true;
+        face[m_ + l] = Interval{H[l].lo, H[l].lo};
+        const Interval a = G.enclose(e, face.span());
+        face[m_ + l] = Interval{H[l].hi, H[l].hi};
+        const Interval b = G.enclose(e, face.span());
+        if ((a.lo > 0 && b.lo > 0) || (a.hi < 0 && b.hi < 0)) return true;
       }
     }
     return false;
@@ -673,14 +621,10 @@ class CellAnalysis {
   std::vector<Work> pending_; // resolved boxes left for the second pass
   exact::ChartEnclosure chart_;
   int N_, m_, k_;
-  std::vector<Interval> T_enc_, N_enc_;
+  std::span<const Interval> T_enc_, N_enc_;  // the chart's (exact T and Nn, enclosed)
   Box zero_slab_;  // k times [0, 0]
   double r_ = 0, rho_u_ = 0, gN_ = 0;
   IA r2_;                                        // r^2, enclosed
-  std::vector<exact::Polynomial> G_;                    // the chart equations G(u, h)
-  std::vector<std::vector<Interval>> G_coef_;    // their coefficients, enclosed
-  std::vector<std::vector<exact::Polynomial>> dG_;               // dG_e / dh_l
-  std::vector<std::vector<std::vector<Interval>>> dG_coef_;      // their coefficients, enclosed
   std::vector<Candidate> cands_;
   std::map<std::vector<int>, exact::SquareSystem> systems_;
   RestrictedCellReport report_;

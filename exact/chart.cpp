@@ -65,6 +65,58 @@ Polynomial substitute_affine(const Polynomial& f, const std::vector<Polynomial>&
   return out;
 }
 
+// A certified lower bound, rounded down, of the smallest eigenvalue of the Gram matrix A^T A of
+// the exact A (rows x cols, row-major; `enc` its enclosures); 0 when none is found positive.
+// First Gershgorin's bound min_a (G_aa - sum_{b != a} |G_ab|) in interval arithmetic from the
+// enclosures (each computed G_ab encloses the exact entry, so the computed lower end is below the
+// exact Gershgorin bound, itself below the eigenvalue): enough for the nearly orthogonal columns
+// of a chart. Failing that, exactly: the larger of Gershgorin's bound and det / trace^(cols - 1)
+// (the product of the other eigenvalues is at most trace^(cols - 1)).
+double smallest_eigenvalue_bound(const std::vector<mpq_class>& A, std::span<const Interval> enc, int rows, int cols) {
+  {
+    detail::EnsureUpward guard;
+    std::vector<IA> G(static_cast<std::size_t>(cols) * cols, IA(0));
+    for (int a = 0; a < cols; ++a)
+      for (int b = 0; b < cols; ++b)
+        for (int v = 0; v < rows; ++v) G[a * cols + b] += detail::to_ia(enc[v * cols + a]) * detail::to_ia(enc[v * cols + b]);
+    double gersh = 0;
+    for (int a = 0; a < cols; ++a) {
+      IA row = G[a * cols + a];
+      for (int b = 0; b < cols; ++b)
+        if (b != a) row -= CGAL::abs(G[a * cols + b]);
+      if (a == 0 || row.inf() < gersh) gersh = row.inf();
+    }
+    if (gersh > 0 && std::isfinite(gersh)) return gersh;
+  }
+  std::vector<mpq_class> G(static_cast<std::size_t>(cols) * cols);
+  for (int a = 0; a < cols; ++a)
+    for (int b = 0; b < cols; ++b)
+      for (int v = 0; v < rows; ++v) G[a * cols + b] += A[v * cols + a] * A[v * cols + b];
+  mpq_class gersh = -1, trace = 0;
+  for (int a = 0; a < cols; ++a) {
+    mpq_class row = G[a * cols + a];
+    for (int b = 0; b < cols; ++b)
+      if (b != a) row -= abs(G[a * cols + b]);
+    if (a == 0 || row < gersh) gersh = row;
+    trace += G[a * cols + a];
+  }
+  // det G by exact Gaussian elimination (G is positive semidefinite: a zero pivot means det 0).
+  std::vector<mpq_class> E = G;
+  mpq_class det = 1;
+  for (int c = 0; c < cols && det != 0; ++c) {
+    det *= E[c * cols + c];
+    if (det == 0) break;
+    for (int r = c + 1; r < cols; ++r) {
+      const mpq_class f = E[r * cols + c] / E[c * cols + c];
+      for (int j = c; j < cols; ++j) E[r * cols + j] -= f * E[c * cols + j];
+    }
+  }
+  mpq_class bound = det;
+  for (int i = 1; i < cols; ++i) bound /= trace;
+  bound = std::max(bound, gersh);
+  return bound > 0 ? enclose(bound).lo : 0;
+}
+
 // The power of two 2^s with max |column entry| * 2^s in [1/2, 1) (1 for a zero column).
 mpq_class column_scale(const std::vector<mpq_class>& M, int rows, int cols, int c) {
   mpq_class big = 0;
@@ -297,6 +349,16 @@ std::span<const double> ChartEnclosure::base_point() const { return impl_->p; }
 const mpq_class& ChartEnclosure::tangent(int row, int col) const { return impl_->T[row * impl_->m + col]; }
 const mpq_class& ChartEnclosure::normal(int row, int col) const { return impl_->Nn[row * impl_->k + col]; }
 const ParametricSystem& ChartEnclosure::chart_system() const { return impl_->G; }
+std::span<const Interval> ChartEnclosure::tangent_enclosure() const { return impl_->T_enc; }
+std::span<const Interval> ChartEnclosure::normal_enclosure() const { return impl_->Nn_enc; }
+
+ChartEnclosure::GramBounds ChartEnclosure::gram_bounds() const {
+  const Impl& S = *impl_;
+  const GramBounds g{smallest_eigenvalue_bound(S.T, S.T_enc, S.N, S.m), smallest_eigenvalue_bound(S.Nn, S.Nn_enc, S.N, S.k)};
+  if (!(g.tangent > 0 && g.normal > 0))
+    throw std::domain_error("chart: cannot bound the Gram matrix of its tangent or normal basis away from 0");
+  return g;
+}
 
 bool ChartEnclosure::image(const Box& U, const Box& H, Box& X) const {
   const Impl& S = *impl_;

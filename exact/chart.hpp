@@ -88,6 +88,16 @@ class ChartEnclosure {
   const mpq_class& normal(int row, int col) const;   // Nn
   // G(u, h) = F(p + T u + Nn h): k polynomials in the m + k variables (u, h).
   const ParametricSystem& chart_system() const;
+  // Enclosures of the exact T and Nn (row-major, as above).
+  std::span<const Interval> tangent_enclosure() const;
+  std::span<const Interval> normal_enclosure() const;
+  // Certified lower bounds, > 0 and rounded down, of the smallest eigenvalues of T^T T and
+  // Nn^T Nn (then |T u|^2 >= tangent |u|^2 and |Nn h|^2 >= normal |h|^2). Throws
+  // std::domain_error when a Gram matrix cannot be bounded away from 0.
+  struct GramBounds {
+    double tangent = 0, normal = 0;
+  };
+  GramBounds gram_bounds() const;
 
   // Encloses the piece of M over U, choosing H itself: an approximate h0 at the centre u0 of U
   // by Newton from `h_hint` (default 0, i.e. from p; pass the h of a neighbouring box), then

@@ -170,6 +170,27 @@ int ParametricSystem::size() const { return impl_->n; }
 int ParametricSystem::num_parameters() const { return impl_->m; }
 std::vector<Polynomial> ParametricSystem::equations() const { return polynomials(impl_->f); }
 
+namespace {
+Interval enclose_row(const PreparedPtr& row, std::span<const Interval> z) {
+  detail::EnsureUpward guard;
+  SmallBuffer<IA, 16> x(z.size());
+  for (std::size_t v = 0; v < z.size(); ++v) x[v] = detail::to_ia(z[v]);
+  return detail::from_ia(evaluate(row, x.span()));
+}
+}  // namespace
+
+Interval ParametricSystem::enclose(int i, std::span<const Interval> z) const {
+  if (i < 0 || i >= impl_->n || static_cast<int>(z.size()) != impl_->m + impl_->n)
+    throw std::invalid_argument("parametric system: no such equation, or a box of the wrong dimension");
+  return enclose_row(impl_->f[i], z);
+}
+
+Interval ParametricSystem::enclose_derivative(int i, int j, std::span<const Interval> z) const {
+  if (i < 0 || i >= impl_->n || j < 0 || j >= impl_->n || static_cast<int>(z.size()) != impl_->m + impl_->n)
+    throw std::invalid_argument("parametric system: no such derivative, or a box of the wrong dimension");
+  return enclose_row(impl_->df[i * impl_->n + j], z);
+}
+
 int SquareSystem::size() const { return impl_->n; }
 std::vector<Polynomial> SquareSystem::equations() const { return polynomials(impl_->f); }
 

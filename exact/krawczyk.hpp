@@ -106,6 +106,11 @@ class ParametricSystem {
   int size() const;            // n
   int num_parameters() const;  // m
   std::vector<Polynomial> equations() const;
+  // Enclosures, outward rounded whatever the caller's rounding mode, of equation i (0-based) and
+  // of its derivative in unknown j (variable m + j) over the box z (m + n intervals: parameters,
+  // then unknowns). The interval evaluation Krawczyk itself uses.
+  Interval enclose(int i, std::span<const Interval> z) const;
+  Interval enclose_derivative(int i, int j, std::span<const Interval> z) const;
 
   const SquareSystem::Impl& impl() const { return *impl_; }
 

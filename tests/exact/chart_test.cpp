@@ -281,6 +281,48 @@ TEST(Chart, AdversarialMagnitudesAreCorrectOrUndecided) {
   }
 }
 
+// gram_bounds: below the exact smallest eigenvalues of T^T T and Nn^T Nn, and close to them; by
+// interval Gershgorin for nearly orthogonal columns, by the exact route (det / trace) where
+// Gershgorin fails; refused where the columns are dependent. The chart system's enclosures hold
+// its exact values.
+TEST(Chart, GramBoundsAndEquationEnclosures) {
+  const double p[3] = {0, 0, 1};
+  // T = [[1, 0.25], [0, 1], [0, 0]]: T^T T = [[1, 1/4], [1/4, 17/16]], smallest eigenvalue
+  // (33 - sqrt(17)) / 32 = 0.902... ; Gershgorin gives 3/4.
+  const ChartEnclosure a(sphere(1), p, {1, Q(1, 4), 0, 1, 0, 0}, {0, 0, 1});
+  const auto ga = a.gram_bounds();
+  EXPECT_EQ(ga.tangent, 0.75);
+  EXPECT_EQ(ga.normal, 1.0);
+  // T = [[1, 1], [0, 1/8], [0, 0]]: T^T T = [[1, 1], [1, 65/64]] (Gershgorin negative), smallest
+  // eigenvalue (129 - sqrt(129^2 - 256)) / 128 = 0.00779...; det / trace = (1/64) / (129/64).
+  const ChartEnclosure b(sphere(1), p, {1, 1, 0, Q(1, 8), 0, 0}, {0, 0, 1});
+  const auto gb = b.gram_bounds();
+  EXPECT_GT(gb.tangent, 0);
+  EXPECT_LE(to_rational(gb.tangent), Q(1, 129));
+  EXPECT_GE(gb.tangent, 0.99 / 129);
+  const double lam = (129 - std::sqrt(129.0 * 129 - 256)) / 128;
+  EXPECT_LT(gb.tangent, lam);
+  // Dependent columns: no positive bound.
+  const ChartEnclosure c(sphere(1), p, {1, 2, 0, 0, 0, 0}, {0, 0, 1});
+  EXPECT_THROW(c.gram_bounds(), std::domain_error);
+  // G(u, h) = u1^2 + u2^2 + (1 + h)^2 - 1 with the obvious bases; dG/dh = 2 (1 + h).
+  const ChartEnclosure d(sphere(1), p, {1, 0, 0, 1, 0, 0}, {0, 0, 1});
+  const std::vector<Interval> z{{0.5, 0.5}, {-0.25, 0.25}, {-0.125, 0.0}};
+  const Interval g = d.chart_system().enclose(0, z), dg = d.chart_system().enclose_derivative(0, 0, z);
+  // Exact range: u1^2 = 1/4, u2^2 in [0, 1/16], (1 + h)^2 - 1 in [-15/64, 0].
+  EXPECT_LE(g.lo, 0.25 - 15.0 / 64);
+  EXPECT_GE(g.hi, 0.25 + 1.0 / 16);
+  EXPECT_LE(dg.lo, 1.75);
+  EXPECT_GE(dg.hi, 2.0);
+  EXPECT_GT(dg.lo, 1.5);
+  EXPECT_THROW(d.chart_system().enclose(1, z), std::invalid_argument);
+  EXPECT_THROW(d.chart_system().enclose_derivative(0, 1, z), std::invalid_argument);
+  EXPECT_THROW(d.chart_system().enclose(0, std::vector<Interval>(2)), std::invalid_argument);
+  EXPECT_EQ(d.tangent_enclosure().size(), 6u);
+  EXPECT_EQ(d.normal_enclosure()[2].lo, 1.0);
+  EXPECT_TRUE(rounding_is_nearest());
+}
+
 TEST(Chart, RejectsMismatchedInput) {
   const ImplicitSystem F = sphere(1.0);
   const double p[3] = {0, 0, 1};
