@@ -10,6 +10,7 @@
 
 #include "exact/detail/cgal_number_types.hpp"
 #include "exact/detail/interval_polynomial.hpp"
+#include "exact/enclosed_polynomial.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::exact {
@@ -31,7 +32,8 @@ struct ChartEnclosure::Impl {
   std::vector<mpq_class> T, Nn;              // N x m, N x k, row-major
   std::vector<Interval> T_enc, Nn_enc;       // their enclosures
   ParametricSystem G;                        // k equations in (u, h)
-  std::vector<DoublePolynomial> g, gh, gu;   // G, d G_i / d h_j (k x k), d G_i / d u_a (k x m)
+  // G, d G_i / d h_j (k x k), d G_i / d u_a (k x m), for their approximate values (Newton).
+  std::vector<EnclosedPolynomial> g, gh, gu;
   ChartOptions options;
 
   Impl(ParametricSystem system) : G(std::move(system)) {}
@@ -39,28 +41,28 @@ struct ChartEnclosure::Impl {
 
 namespace {
 
-// F(p + T u + Nn h) exactly: every variable x_v of F is replaced by the affine polynomial
-// A_v = p_v + sum_a T_va u_a + sum_l Nn_vl h_l in the m + k variables (u, h), and the products
-// are expanded in exact rational arithmetic.
-Polynomial substitute_affine(const Polynomial& f, const std::vector<Polynomial>& A, int vars) {
-  Polynomial out(vars);
-  std::vector<std::vector<Polynomial>> powers(A.size());  // powers[v][e] = A_v^e, filled lazily
-  auto power = [&](std::size_t v, std::uint32_t e) -> const Polynomial& {
+// F(p + T u + Nn h) by enclosures: every variable x_v of F is replaced by the enclosed affine
+// polynomial A_v in the m + k variables (u, h), and the products are expanded in interval
+// arithmetic (exact/enclosed_polynomial.hpp).
+EnclosedPolynomial substitute_affine(const Polynomial& f, const std::vector<EnclosedPolynomial>& A, int vars) {
+  EnclosedPolynomial out(vars);
+  std::vector<std::vector<EnclosedPolynomial>> powers(A.size());  // powers[v][e - 1] = A_v^e, filled lazily
+  auto power = [&](std::size_t v, std::uint32_t e) -> const EnclosedPolynomial& {
     auto& pw = powers[v];
-    if (pw.empty()) pw.push_back(Polynomial::constant(1, vars));
-    while (pw.size() <= e) pw.push_back(pw.size() == 1 ? A[v] : pw.back() * A[v]);
-    return pw[e];
+    while (pw.size() < e) pw.push_back(pw.empty() ? A[v] : pw.back() * A[v]);
+    return pw[e - 1];
   };
   for (const auto& t : f.terms()) {
-    // The product of the powers, then one scaling by the coefficient (a term-wise product, not a
-    // polynomial product with a constant).
-    std::optional<Polynomial> prod;
+    // The product of the powers, then one scaling by the coefficient's enclosure.
+    std::optional<EnclosedPolynomial> prod;
     for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v)
       if (t.monomial.exponents[v] > 0) {
-        const Polynomial& pw = power(v, t.monomial.exponents[v]);
+        const EnclosedPolynomial& pw = power(v, t.monomial.exponents[v]);
         prod = prod ? *prod * pw : pw;
       }
-    out += prod ? prod->scaled(t.coefficient) : Polynomial::constant(t.coefficient, vars);  // linear merges
+    const Interval c = enclose(t.coefficient);
+    prod = prod ? prod->scaled(c) : EnclosedPolynomial::constant(c, vars);
+    out = out + *prod;
   }
   return out;
 }
@@ -154,8 +156,8 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   auto linearise = [&](double h) {
     z[m] = h;
     const std::span<const double> zc(z.data(), z.size());
-    g = S.g[0](zc);
-    jh = S.gh[0](zc);
+    g = S.g[0].approx(zc);
+    jh = S.gh[0].approx(zc);
     return std::isfinite(g) && std::isfinite(jh);
   };
   // Newton for G(z_u, .) = 0 from h; false when it breaks down. On success g and jh hold the
@@ -175,7 +177,7 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   auto ju_finite = [&] {
     const std::span<const double> zc(z.data(), z.size());
     for (int a = 0; a < m; ++a)
-      if (!std::isfinite(S.gu[a](zc))) return false;
+      if (!std::isfinite(S.gu[a].approx(zc))) return false;
     return true;
   };
   for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
@@ -185,7 +187,7 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   {
     const std::span<const double> zc(z.data(), z.size());
     const double inv = 1.0 / jh;
-    for (int a = 0; a < m; ++a) r[0] += std::abs(S.gu[a](zc) * inv) * 0.5 * U[a].width();
+    for (int a = 0; a < m; ++a) r[0] += std::abs(S.gu[a].approx(zc) * inv) * 0.5 * U[a].width();
   }
   for (int corner = 0; corner < (1 << m); ++corner) {
     for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
@@ -225,10 +227,10 @@ bool guess_slab(const ChartEnclosure::Impl& S, const Box& U, std::span<const dou
     for (int i = 0; i < k; ++i) z[m + i] = h[i];
     const std::span<const double> zc(z.data(), z.size());
     for (int i = 0; i < k; ++i) {
-      g(i) = S.g[i](zc);
-      for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j](zc);
+      g(i) = S.g[i].approx(zc);
+      for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j].approx(zc);
       if (with_u)
-        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a](zc);
+        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a].approx(zc);
     }
     return g.allFinite() && Jh.allFinite() && (!with_u || Ju.allFinite());
   };
@@ -292,32 +294,36 @@ ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> 
     throw std::invalid_argument("chart: T must be N x m and Nn must be N x (N - m)");
   if (m < 1) throw std::invalid_argument("chart: the manifold has dimension 0");
   const int vars = m + k;
-  std::vector<Polynomial> A;
+  std::vector<Interval> T_enc, Nn_enc;
+  for (const auto& q : T) T_enc.push_back(exact::enclose(q));
+  for (const auto& q : Nn) Nn_enc.push_back(exact::enclose(q));
+  // A_v = p_v + sum_a T_va u_a + sum_l Nn_vl h_l, known by enclosures (p_v exactly), and
+  // G = F(A) by enclosed products (exact/enclosed_polynomial.hpp): the exact G is one of the
+  // polynomials it stands for, so every Krawczyk answer on it holds for the exact G.
+  std::vector<EnclosedPolynomial> A;
+  std::vector<Interval> linear(vars);
   for (int v = 0; v < N; ++v) {
-    Polynomial a = Polynomial::constant(to_rational(p[v]), vars);
-    for (int j = 0; j < m; ++j)
-      if (T[v * m + j] != 0) a = a + Polynomial::variable(j, vars).scaled(T[v * m + j]);
-    for (int l = 0; l < k; ++l)
-      if (Nn[v * k + l] != 0) a = a + Polynomial::variable(m + l, vars).scaled(Nn[v * k + l]);
-    A.push_back(std::move(a));
+    for (int a = 0; a < m; ++a) linear[a] = T_enc[v * m + a];
+    for (int l = 0; l < k; ++l) linear[m + l] = Nn_enc[v * k + l];
+    A.push_back(EnclosedPolynomial::affine(Interval::point(p[v]), linear));
   }
-  std::vector<Polynomial> G;
+  std::vector<EnclosedPolynomial> G;
   for (const auto& f : F.equations()) G.push_back(substitute_affine(f, A, vars));
-  auto impl = std::make_shared<Impl>(ParametricSystem(G, m));
+  auto impl = std::make_shared<Impl>(ParametricSystem::from_enclosures(G, m));
   impl->N = N;
   impl->m = m;
   impl->k = k;
   impl->p.assign(p.begin(), p.end());
   impl->T = std::move(T);
   impl->Nn = std::move(Nn);
-  for (const auto& q : impl->T) impl->T_enc.push_back(exact::enclose(q));
-  for (const auto& q : impl->Nn) impl->Nn_enc.push_back(exact::enclose(q));
+  impl->T_enc = std::move(T_enc);
+  impl->Nn_enc = std::move(Nn_enc);
   for (int i = 0; i < k; ++i) {
-    impl->g.emplace_back(G[i]);
-    for (int j = 0; j < k; ++j) impl->gh.emplace_back(G[i].derivative(m + j));
+    impl->g.push_back(G[i]);
+    for (int j = 0; j < k; ++j) impl->gh.push_back(G[i].derivative(m + j));
   }
   for (int i = 0; i < k; ++i)
-    for (int a = 0; a < m; ++a) impl->gu.emplace_back(G[i].derivative(a));
+    for (int a = 0; a < m; ++a) impl->gu.push_back(G[i].derivative(a));
   impl->options = options;
   impl_ = std::move(impl);
 }

@@ -10,6 +10,7 @@
 
 #include "exact/detail/cgal_number_types.hpp"
 #include "exact/detail/interval_polynomial.hpp"
+#include "exact/enclosed_polynomial.hpp"
 #include "exact/number_types.hpp"
 #include "exact/small_buffer.hpp"
 
@@ -18,14 +19,17 @@ namespace delcert::exact {
 using detail::IA;
 
 // A polynomial with the enclosures of its coefficients, prepared once and shared (immutable)
-// between the systems that hold it (SquareSystem(head, tail) shares the head's rows).
-// An ENCLOSED AFFINE row (SquareSystem::with_enclosed_rows) has no exact polynomial:
-// coef[0] encloses its constant and coef[1 + j] its coefficient of variable j (a derivative row
-// of it is the constant coef[0] alone).
+// between the systems that hold it (SquareSystem(head, tail) shares the head's rows). Three
+// kinds: an exact polynomial p with its coefficients enclosed in coef; an ENCLOSED AFFINE row
+// (SquareSystem::with_enclosed_rows; no exact polynomial): coef[0] encloses its constant and
+// coef[1 + j] its coefficient of variable j (a derivative row of it is the constant coef[0]
+// alone); an ENCLOSED row (ParametricSystem::from_enclosures): the EnclosedPolynomial e.
 struct Prepared {
-  Polynomial p;  // the exact polynomial (empty for an enclosed affine row)
+  enum class Kind { exact, enclosed_affine, enclosed };
+  Polynomial p;  // the exact polynomial (empty unless kind == exact)
   std::vector<Interval> coef;
-  bool enclosed_affine = false;
+  Kind kind = Kind::exact;
+  EnclosedPolynomial e;
 };
 using PreparedPtr = std::shared_ptr<const Prepared>;
 
@@ -45,21 +49,42 @@ namespace {
 
 PreparedPtr prepare(Polynomial p) {
   auto coef = coefficient_enclosures(p);
-  return std::make_shared<const Prepared>(Prepared{std::move(p), std::move(coef)});
+  return std::make_shared<const Prepared>(Prepared{std::move(p), std::move(coef), Prepared::Kind::exact, EnclosedPolynomial()});
 }
 
-// Encloses the row over the box x (the caller holds upward rounding). An enclosed affine row
-// c + l.x: for every choice of c and l in their enclosures and x in the box, the value lies in
-// the interval sum of products (inclusion isotonicity), so it encloses the true row too.
+// Encloses the row over the box x (the caller holds upward rounding). An enclosed row stands
+// for every polynomial with its monomials and coefficients in their enclosures: the same term
+// loop as Polynomial::evaluate_with (coefficient, then the powers, then the sum), in interval
+// arithmetic, encloses the value of each of them on the box (inclusion isotonicity), the true
+// row's included.
 IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
-  if (!p->enclosed_affine) return detail::evaluate(p->p, p->coef, x);
-  IA acc = detail::to_ia(p->coef[0]);
-  for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
-  return acc;
+  switch (p->kind) {
+    case Prepared::Kind::exact: return detail::evaluate(p->p, p->coef, x);
+    case Prepared::Kind::enclosed_affine: {
+      IA acc = detail::to_ia(p->coef[0]);
+      for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
+      return acc;
+    }
+    case Prepared::Kind::enclosed: break;
+  }
+  const EnclosedPolynomial& e = p->e;
+  IA sum(0);
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    IA t = detail::to_ia(e.coefficient(i));
+    const auto ex = e.exponents(i);
+    for (std::size_t v = 0; v < ex.size(); ++v)
+      for (std::uint32_t k = 0; k < ex[v]; ++k) t = t * x[v];
+    sum = sum + t;
+  }
+  return sum;
 }
 
 PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
-  return std::make_shared<const Prepared>(Prepared{Polynomial(), std::move(coef), true});
+  return std::make_shared<const Prepared>(Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial()});
+}
+
+PreparedPtr prepare_enclosed(EnclosedPolynomial e) {
+  return std::make_shared<const Prepared>(Prepared{Polynomial(), {}, Prepared::Kind::enclosed, std::move(e)});
 }
 
 // Checks n equations in `vars` variables; `what` names the system in error messages.
@@ -100,8 +125,8 @@ std::shared_ptr<const SquareSystem::Impl> make_system(std::vector<Polynomial> eq
 std::vector<Polynomial> polynomials(const std::vector<PreparedPtr>& f) {
   std::vector<Polynomial> out;
   for (const auto& p : f) {
-    if (p->enclosed_affine)
-      throw std::logic_error("square system: a row given by coefficient enclosures has no exact polynomial");
+    if (p->kind != Prepared::Kind::exact)
+      throw std::logic_error("polynomial system: a row given by coefficient enclosures has no exact polynomial");
     out.push_back(p->p);
   }
   return out;
@@ -161,6 +186,26 @@ SquareSystem SquareSystem::with_enclosed_rows(const ParametricSystem& head, std:
     impl->f.push_back(prepare_enclosed(std::move(coef)));
   }
   return SquareSystem(std::shared_ptr<const Impl>(std::move(impl)));
+}
+
+ParametricSystem ParametricSystem::from_enclosures(std::vector<EnclosedPolynomial> equations, int num_parameters) {
+  const int n = static_cast<int>(equations.size()), m = num_parameters;
+  if (n < 1) throw std::invalid_argument("a parametric system needs at least one equation");
+  if (m < 0) throw std::invalid_argument("a parametric system needs a non-negative number of parameters");
+  for (std::size_t i = 0; i < equations.size(); ++i)
+    if (equations[i].num_variables() != m + n)
+      throw std::invalid_argument("parametric system: equation " + std::to_string(i + 1) + " has " +
+                                  std::to_string(equations[i].num_variables()) + " variables, expected " +
+                                  std::to_string(m + n));
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  impl->n = n;
+  impl->m = m;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) impl->df.push_back(prepare_enclosed(equations[i].derivative(m + j)));
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < m; ++a) impl->du.push_back(prepare_enclosed(equations[i].derivative(a)));
+  for (auto& e : equations) impl->f.push_back(prepare_enclosed(std::move(e)));
+  return ParametricSystem(std::move(impl));
 }
 
 ParametricSystem::ParametricSystem(std::vector<Polynomial> equations, int num_parameters)

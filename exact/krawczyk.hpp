@@ -51,6 +51,7 @@
 #include <string_view>
 #include <vector>
 
+#include "exact/enclosed_polynomial.hpp"
 #include "exact/interval.hpp"
 #include "exact/polynomial.hpp"
 
@@ -103,6 +104,11 @@ class ParametricSystem {
  public:
   // Throws std::invalid_argument unless there are n >= 1 polynomials in m + n variables, m >= 0.
   ParametricSystem(std::vector<Polynomial> equations, int num_parameters);
+  // The same from polynomials known by coefficient enclosures (exact/enclosed_polynomial.hpp):
+  // krawczyk() answers for every polynomial system they stand for at once, by the argument of
+  // SquareSystem::with_enclosed_rows (their derivatives are enclosed the same way). equations()
+  // then throws std::logic_error. Throws std::invalid_argument as the constructor.
+  static ParametricSystem from_enclosures(std::vector<EnclosedPolynomial> equations, int num_parameters);
   int size() const;            // n
   int num_parameters() const;  // m
   std::vector<Polynomial> equations() const;
@@ -115,6 +121,7 @@ class ParametricSystem {
   const SquareSystem::Impl& impl() const { return *impl_; }
 
  private:
+  explicit ParametricSystem(std::shared_ptr<const SquareSystem::Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const SquareSystem::Impl> impl_;
 };
 

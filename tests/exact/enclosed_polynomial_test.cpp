@@ -1,0 +1,135 @@
+// EnclosedPolynomial (exact/enclosed_polynomial.hpp): every operation's enclosures hold the exact
+// result of the same operation on exact polynomials inside the operands' enclosures (checked
+// against exact rational arithmetic on the polynomials the operands were enclosed from), over
+// adversarial magnitudes (10^-310 ... 10^308: underflow, overflow); the chart-style parametric
+// system built from enclosures decides like the exact one.
+#include "exact/enclosed_polynomial.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "exact/krawczyk.hpp"
+#include "exact/number_types.hpp"
+#include "support.hpp"
+
+namespace delcert::exact {
+namespace {
+
+using testing::Q;
+using testing::Rng;
+
+// True when the exact q lies in i (an infinite bound holds everything beyond it).
+bool holds(const Interval& i, const Q& q) {
+  if (std::isnan(i.lo) || std::isnan(i.hi)) return false;
+  const bool lo_ok = std::isinf(i.lo) ? i.lo < 0 : to_rational(i.lo) <= q;
+  const bool hi_ok = std::isinf(i.hi) ? i.hi > 0 : q <= to_rational(i.hi);
+  return lo_ok && hi_ok;
+}
+
+// Every exact coefficient is enclosed by the term with the same monomial; every other enclosed
+// term holds 0 (a term the exact result cancelled).
+void expect_encloses(const EnclosedPolynomial& e, const Polynomial& exact, const char* what) {
+  std::map<std::vector<std::uint32_t>, Q> want;
+  for (const auto& t : exact.terms()) {
+    std::vector<std::uint32_t> ex(e.num_variables(), 0);
+    for (std::size_t v = 0; v < t.monomial.exponents.size(); ++v) ex[v] = t.monomial.exponents[v];
+    want[ex] = t.coefficient;
+  }
+  std::size_t matched = 0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    const auto span = e.exponents(i);
+    const std::vector<std::uint32_t> ex(span.begin(), span.end());
+    const auto it = want.find(ex);
+    const Q c = it == want.end() ? Q(0) : it->second;
+    if (it != want.end()) ++matched;
+    EXPECT_TRUE(holds(e.coefficient(i), c)) << what << ": term " << i << " [" << e.coefficient(i).lo << ", "
+                                            << e.coefficient(i).hi << "] misses " << c.get_d();
+  }
+  EXPECT_EQ(matched, want.size()) << what << ": an exact term has no enclosed counterpart";
+}
+
+// A random polynomial in `vars` variables, degree <= 2 per variable, coefficients doubles of
+// magnitude 2^e for e in [emin, emax] (exact as rationals).
+Polynomial random_polynomial(Rng& rng, int vars, int terms, int emin, int emax) {
+  Polynomial p(vars);
+  for (int t = 0; t < terms; ++t) {
+    Polynomial m = Polynomial::constant(to_rational(std::ldexp(rng.uniform(-1, 1), rng.integer(emin, emax))), vars);
+    for (int v = 0; v < vars; ++v)
+      for (int k = rng.integer(0, 2); k > 0; --k) m = m * Polynomial::variable(v, vars);
+    p = p + m;
+  }
+  return p;
+}
+
+TEST(EnclosedPolynomial, OperationsEncloseTheExactResultsAtEveryMagnitude) {
+  Rng rng(2026);
+  // Ordinary magnitudes, then tiny (products underflow past the subnormals), then huge
+  // (products overflow: the enclosures go infinite and still hold the exact values).
+  const int ranges[][2] = {{-4, 4}, {-1030, -500}, {500, 1020}, {-1074, 1023}};
+  int cases = 0;
+  for (const auto& r : ranges)
+    for (int trial = 0; trial < 40; ++trial) {
+      const int vars = rng.integer(1, 4);
+      const Polynomial a = random_polynomial(rng, vars, rng.integer(1, 6), r[0], r[1]);
+      const Polynomial b = random_polynomial(rng, vars, rng.integer(1, 6), r[0], r[1]);
+      const EnclosedPolynomial ea = EnclosedPolynomial::from_exact(a), eb = EnclosedPolynomial::from_exact(b);
+      expect_encloses(ea, a, "from_exact");
+      expect_encloses(ea + eb, a + b, "sum");
+      expect_encloses(ea * eb, a * b, "product");
+      expect_encloses((ea * eb) * ea, (a * b) * a, "triple product");
+      const double s = std::ldexp(rng.uniform(-1, 1), rng.integer(r[0], r[1]));
+      expect_encloses(ea.scaled(Interval::point(s)), a.scaled(to_rational(s)), "scaled");
+      for (int v = 0; v < vars; ++v) expect_encloses((ea * eb).derivative(v), (a * b).derivative(v), "derivative");
+      ++cases;
+    }
+  EXPECT_EQ(cases, 160);
+}
+
+TEST(EnclosedPolynomial, WideEnclosuresStandForEveryPolynomialInThem) {
+  // (c + x)^2 with c in [1, 2]: the coefficients must hold those of every c in between.
+  const Interval c{1, 2};
+  const std::vector<Interval> lin{{1, 1}};
+  const EnclosedPolynomial a = EnclosedPolynomial::affine(c, lin);
+  const EnclosedPolynomial sq = a * a;
+  for (int s = 0; s <= 8; ++s) {
+    const Q cq = Q(1) + Q(s, 8);
+    const Polynomial exact = (Polynomial::constant(cq, 1) + Polynomial::variable(0, 1)) *
+                             (Polynomial::constant(cq, 1) + Polynomial::variable(0, 1));
+    expect_encloses(sq, exact, "square of a wide affine form");
+  }
+  // approx uses the midpoints: c^2 in [1, 4], 2c in [2, 4], 1; at x = 1: 2.5 + 3 + 1.
+  EXPECT_EQ(sq.approx(std::vector<double>{1.0}), 6.5);
+}
+
+TEST(EnclosedPolynomial, ParametricSystemFromEnclosuresDecidesLikeTheExactOne) {
+  // x2^2 - x1 (parameter x1 = u, unknown x2): sqrt(u) over parameter boxes.
+  const Polynomial f = Polynomial::parse("x2^2 - x1", 2);
+  const ParametricSystem exact({f}, 1);
+  const ParametricSystem enclosed = ParametricSystem::from_enclosures({EnclosedPolynomial::from_exact(f)}, 1);
+  for (double a = 0.25; a < 4; a *= 1.5) {
+    const Box U{{a, a * 1.125}};
+    const auto x = krawczyk(exact, U, Box{{0.25, 3.0}}), e = krawczyk(enclosed, U, Box{{0.25, 3.0}});
+    EXPECT_EQ(x.status, e.status) << a;
+    ASSERT_EQ(e.status, RootStatus::unique_root) << a;
+    EXPECT_EQ(x.box[0].lo, e.box[0].lo);  // from_exact keeps the exact rows' terms and order
+    EXPECT_EQ(x.box[0].hi, e.box[0].hi);
+  }
+  EXPECT_EQ(krawczyk(enclosed, Box{{1.0, 2.0}}, Box{{2.0, 3.0}}).status, RootStatus::no_root);
+  const std::vector<Interval> z{{2, 2}, {1, 1}};
+  EXPECT_TRUE(enclosed.enclose(0, z).contains(-1.0));
+  EXPECT_TRUE(enclosed.enclose_derivative(0, 0, z).contains(2.0));
+  EXPECT_THROW(enclosed.equations(), std::logic_error);
+  EXPECT_THROW(ParametricSystem::from_enclosures({EnclosedPolynomial(3)}, 1), std::invalid_argument);
+  EXPECT_THROW(ParametricSystem::from_enclosures({}, 0), std::invalid_argument);
+  EXPECT_THROW(EnclosedPolynomial(2) + EnclosedPolynomial(3), std::invalid_argument);
+  EXPECT_THROW(EnclosedPolynomial(2) * EnclosedPolynomial(3), std::invalid_argument);
+  EXPECT_THROW(EnclosedPolynomial(2).derivative(2), std::invalid_argument);
+  EXPECT_TRUE(rounding_is_nearest());
+}
+
+}  // namespace
+}  // namespace delcert::exact
