@@ -30,7 +30,7 @@ IA ia(const Interval& i) { return exact::to_interval_number(i); }
 // enclosures of c, 2a and 2b, computed in interval arithmetic from the coordinates (the enclosure
 // of d = q - p holds the exact difference of the two doubles; T_enc, N_enc hold the exact bases),
 // so they hold the exact values; an overflow gives an infinite or NaN bound, which decides nothing.
-// Exact rationals only for the few candidates that enter a Krawczyk system (krawczyk_vertex).
+// The vertex systems (krawczyk_vertex) take these enclosures too (SquareSystem::with_enclosed_rows).
 struct Candidate {
   int index = -1;
   IA c;

@@ -8,7 +8,7 @@
 //
 // THE BALL. options.graph_radius = r (ambient). Every statement below is about M ∩ B(p, r), B open.
 // With g_T, g_N certified lower bounds of the smallest eigenvalues of T^T T and Nn^T Nn
-// (Gershgorin or det / trace^(dim - 1), exact rationals), every x in B(p, r) has
+// (exact::ChartEnclosure::gram_bounds), every x in B(p, r) has
 // |u_a| <= |u| < r / sqrt(g_T) =: rho_u, so M ∩ B(p, r) lies over U0 = [-rho_u, rho_u]^m (U0 is
 // derived from r, not a separate option), and over a box U its normal coordinates satisfy
 // |h_l|^2 <= |Nn h|^2 / g_N < (r^2 - inf_U |T u|^2) / g_N: the slab H_ball(U).
@@ -148,7 +148,7 @@ class RestrictedCell {
 
 // Both passes with no shared target (the cell's own vertices bound the refinement).
 // Throws std::invalid_argument on a non-positive graph_radius, std::domain_error when J_F(p) is
-// rank deficient or Gershgorin cannot bound T^T T or Nn^T Nn away from 0.
+// rank deficient or T^T T or Nn^T Nn cannot be bounded away from 0.
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
                                              const detail::PointGrid& grid, int p, const RestrictedCellOptions& options);
 
