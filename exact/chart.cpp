@@ -45,7 +45,7 @@ namespace {
 // polynomial A_v in the m + k variables (u, h), and the products are expanded in interval
 // arithmetic (exact/enclosed_polynomial.hpp).
 EnclosedPolynomial substitute_affine(const Polynomial& f, const std::vector<EnclosedPolynomial>& A, int vars) {
-  EnclosedPolynomial out(vars);
+  std::vector<EnclosedPolynomial> parts;
   std::vector<std::vector<EnclosedPolynomial>> powers(A.size());  // powers[v][e - 1] = A_v^e, filled lazily
   auto power = [&](std::size_t v, std::uint32_t e) -> const EnclosedPolynomial& {
     auto& pw = powers[v];
@@ -61,10 +61,9 @@ EnclosedPolynomial substitute_affine(const Polynomial& f, const std::vector<Encl
         prod = prod ? *prod * pw : pw;
       }
     const Interval c = enclose(t.coefficient);
-    prod = prod ? prod->scaled(c) : EnclosedPolynomial::constant(c, vars);
-    out = out + *prod;
+    parts.push_back(prod ? prod->scaled(c) : EnclosedPolynomial::constant(c, vars));
   }
-  return out;
+  return EnclosedPolynomial::sum(parts, vars);
 }
 
 // A certified lower bound, rounded down, of the smallest eigenvalue of the Gram matrix A^T A of

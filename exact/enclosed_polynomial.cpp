@@ -80,6 +80,17 @@ EnclosedPolynomial EnclosedPolynomial::operator+(const EnclosedPolynomial& o) co
   return r;
 }
 
+EnclosedPolynomial EnclosedPolynomial::sum(std::span<const EnclosedPolynomial> terms, int num_variables) {
+  EnclosedPolynomial r(num_variables);
+  for (const auto& t : terms) {
+    if (t.vars_ != num_variables) throw std::invalid_argument("enclosed polynomial: sum of polynomials in different variables");
+    r.exps_.insert(r.exps_.end(), t.exps_.begin(), t.exps_.end());
+    r.coef_.insert(r.coef_.end(), t.coef_.begin(), t.coef_.end());
+  }
+  r.normalize();
+  return r;
+}
+
 EnclosedPolynomial EnclosedPolynomial::operator*(const EnclosedPolynomial& o) const {
   if (o.vars_ != vars_) throw std::invalid_argument("enclosed polynomial: product of polynomials in different variables");
   EnclosedPolynomial r(vars_);

@@ -44,6 +44,8 @@ class EnclosedPolynomial {
   // Throw std::invalid_argument when the numbers of variables differ (operator+, operator*),
   // or var is out of range (derivative); std::overflow_error on an exponent above 2^32 - 1.
   EnclosedPolynomial operator+(const EnclosedPolynomial& o) const;
+  // The sum of all of them (one normalisation), the zero polynomial in num_variables when empty.
+  static EnclosedPolynomial sum(std::span<const EnclosedPolynomial> terms, int num_variables);
   EnclosedPolynomial operator*(const EnclosedPolynomial& o) const;
   EnclosedPolynomial scaled(const Interval& c) const;
   EnclosedPolynomial derivative(int var) const;

@@ -19,17 +19,19 @@ namespace delcert::exact {
 using detail::IA;
 
 // A polynomial with the enclosures of its coefficients, prepared once and shared (immutable)
-// between the systems that hold it (SquareSystem(head, tail) shares the head's rows). Three
-// kinds: an exact polynomial p with its coefficients enclosed in coef; an ENCLOSED AFFINE row
-// (SquareSystem::with_enclosed_rows; no exact polynomial): coef[0] encloses its constant and
-// coef[1 + j] its coefficient of variable j (a derivative row of it is the constant coef[0]
-// alone); an ENCLOSED row (ParametricSystem::from_enclosures): the EnclosedPolynomial e.
+// between the systems that hold it (SquareSystem(head, tail) shares the head's rows). Every row
+// is evaluated from an EnclosedPolynomial e: an exact row keeps its exact polynomial p (for its
+// exact derivatives and equations()) and e = its coefficients enclosed, in p's term order; an
+// ENCLOSED row (ParametricSystem::from_enclosures) has e only; an ENCLOSED AFFINE row
+// (SquareSystem::with_enclosed_rows) has coef: coef[0] encloses its constant and coef[1 + j] its
+// coefficient of variable j (a derivative row of it is the constant coef[0] alone).
 struct Prepared {
   enum class Kind { exact, enclosed_affine, enclosed };
   Polynomial p;  // the exact polynomial (empty unless kind == exact)
   std::vector<Interval> coef;
   Kind kind = Kind::exact;
   EnclosedPolynomial e;
+  std::uint32_t degree = 0;  // the largest exponent of any variable in e
 };
 using PreparedPtr = std::shared_ptr<const Prepared>;
 
@@ -42,50 +44,60 @@ struct SquareSystem::Impl {
   std::vector<PreparedPtr> du;  // n x m row-major: d f_i / d u_a (parameters)
 };
 
-using detail::coefficient_enclosures;
 using detail::finite;
 
 namespace {
 
-PreparedPtr prepare(Polynomial p) {
-  auto coef = coefficient_enclosures(p);
-  return std::make_shared<const Prepared>(Prepared{std::move(p), std::move(coef), Prepared::Kind::exact, EnclosedPolynomial()});
+PreparedPtr prepare_enclosed(EnclosedPolynomial e, Polynomial p = Polynomial(),
+                             Prepared::Kind kind = Prepared::Kind::enclosed) {
+  std::uint32_t degree = 0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    for (std::uint32_t x : e.exponents(i)) degree = std::max(degree, x);
+  return std::make_shared<const Prepared>(Prepared{std::move(p), {}, kind, std::move(e), degree});
 }
 
-// Encloses the row over the box x (the caller holds upward rounding). An enclosed row stands
-// for every polynomial with its monomials and coefficients in their enclosures: the same term
-// loop as Polynomial::evaluate_with (coefficient, then the powers, then the sum), in interval
-// arithmetic, encloses the value of each of them on the box (inclusion isotonicity), the true
-// row's included.
+PreparedPtr prepare(Polynomial p) {
+  EnclosedPolynomial e = EnclosedPolynomial::from_exact(p);
+  return prepare_enclosed(std::move(e), std::move(p), Prepared::Kind::exact);
+}
+
+PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
+  return std::make_shared<const Prepared>(
+      Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial(), 1});
+}
+
+// Encloses the row over the box x (the caller holds upward rounding). The row stands for every
+// polynomial with its monomials and coefficients in their enclosures (an exact row: the one);
+// each term is its coefficient's enclosure times enclosures of the powers of the x_v, summed in
+// interval arithmetic, so by inclusion isotonicity the result encloses the value of each of them
+// on the box. The powers are tabulated once per call: x^1 = x, x^e = (x^(e/2))^2 for even e
+// (CGAL's square: the exact range of a square, never below 0, tighter than x * x when x holds 0),
+// x^e = x^(e-1) * x for odd e; each encloses x^e over the box by the same isotonicity.
 IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
-  switch (p->kind) {
-    case Prepared::Kind::exact: return detail::evaluate(p->p, p->coef, x);
-    case Prepared::Kind::enclosed_affine: {
-      IA acc = detail::to_ia(p->coef[0]);
-      for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
-      return acc;
-    }
-    case Prepared::Kind::enclosed: break;
+  if (p->kind == Prepared::Kind::enclosed_affine) {
+    IA acc = detail::to_ia(p->coef[0]);
+    for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
+    return acc;
   }
   const EnclosedPolynomial& e = p->e;
+  const std::size_t vars = x.size(), D = p->degree;
+  SmallBuffer<IA, 64> pw(vars * (D + 1));  // pw[v * (D + 1) + k] encloses x_v^k (k >= 1)
+  for (std::size_t v = 0; v < vars && D > 0; ++v) {
+    IA* row = &pw[v * (D + 1)];
+    row[1] = x[v];
+    for (std::size_t k = 2; k <= D; ++k) row[k] = k % 2 == 0 ? CGAL::square(row[k / 2]) : row[k - 1] * x[v];
+  }
   IA sum(0);
   for (std::size_t i = 0; i < e.size(); ++i) {
     IA t = detail::to_ia(e.coefficient(i));
     const auto ex = e.exponents(i);
     for (std::size_t v = 0; v < ex.size(); ++v)
-      for (std::uint32_t k = 0; k < ex[v]; ++k) t = t * x[v];
+      if (ex[v] > 0) t = t * pw[v * (D + 1) + ex[v]];
     sum = sum + t;
   }
   return sum;
 }
 
-PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
-  return std::make_shared<const Prepared>(Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial()});
-}
-
-PreparedPtr prepare_enclosed(EnclosedPolynomial e) {
-  return std::make_shared<const Prepared>(Prepared{Polynomial(), {}, Prepared::Kind::enclosed, std::move(e)});
-}
 
 // Checks n equations in `vars` variables; `what` names the system in error messages.
 void check_shape(const std::vector<Polynomial>& equations, int n, int m, const char* what) {

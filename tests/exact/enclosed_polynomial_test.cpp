@@ -81,6 +81,8 @@ TEST(EnclosedPolynomial, OperationsEncloseTheExactResultsAtEveryMagnitude) {
       expect_encloses(ea + eb, a + b, "sum");
       expect_encloses(ea * eb, a * b, "product");
       expect_encloses((ea * eb) * ea, (a * b) * a, "triple product");
+      const std::vector<EnclosedPolynomial> parts{ea, eb, ea * eb};
+      expect_encloses(EnclosedPolynomial::sum(parts, vars), a + b + a * b, "sum of three");
       const double s = std::ldexp(rng.uniform(-1, 1), rng.integer(r[0], r[1]));
       expect_encloses(ea.scaled(Interval::point(s)), a.scaled(to_rational(s)), "scaled");
       for (int v = 0; v < vars; ++v) expect_encloses((ea * eb).derivative(v), (a * b).derivative(v), "derivative");
@@ -122,11 +124,24 @@ TEST(EnclosedPolynomial, ParametricSystemFromEnclosuresDecidesLikeTheExactOne) {
   const std::vector<Interval> z{{2, 2}, {1, 1}};
   EXPECT_TRUE(enclosed.enclose(0, z).contains(-1.0));
   EXPECT_TRUE(enclosed.enclose_derivative(0, 0, z).contains(2.0));
+  // Powers are enclosed as powers: x2^2 over [-1, 2] is [0, 4] (x2 * x2 would give [-2, 4]).
+  const std::vector<Interval> across{{0, 0}, {-1, 2}};
+  EXPECT_EQ(enclosed.enclose(0, across).lo, 0.0);
+  EXPECT_EQ(enclosed.enclose(0, across).hi, 4.0);
+  EXPECT_EQ(exact.enclose(0, across).lo, 0.0);
+  const ParametricSystem quartic({Polynomial::parse("x2^4 + x2^3 - x1", 2)}, 1);
+  const Interval q = quartic.enclose(0, across);  // x^4 = (x^2)^2 in [0, 16], x^3 = x^2 x in [-4, 8]
+  EXPECT_LE(q.lo, -27.0 / 256);  // the exact minimum of x^4 + x^3 is -27/256 at x = -3/4
+  EXPECT_GE(q.hi, 24.0);
+  EXPECT_GE(q.lo, -4.0);
   EXPECT_THROW(enclosed.equations(), std::logic_error);
   EXPECT_THROW(ParametricSystem::from_enclosures({EnclosedPolynomial(3)}, 1), std::invalid_argument);
   EXPECT_THROW(ParametricSystem::from_enclosures({}, 0), std::invalid_argument);
   EXPECT_THROW(EnclosedPolynomial(2) + EnclosedPolynomial(3), std::invalid_argument);
   EXPECT_THROW(EnclosedPolynomial(2) * EnclosedPolynomial(3), std::invalid_argument);
+  const std::vector<EnclosedPolynomial> mixed{EnclosedPolynomial(2), EnclosedPolynomial(3)};
+  EXPECT_THROW(EnclosedPolynomial::sum(mixed, 2), std::invalid_argument);
+  EXPECT_EQ(EnclosedPolynomial::sum({}, 2).size(), 0u);
   EXPECT_THROW(EnclosedPolynomial(2).derivative(2), std::invalid_argument);
   EXPECT_TRUE(rounding_is_nearest());
 }
