@@ -6,8 +6,9 @@
 #   lib/cmake/delcert/                               the package config: find_package(delcert)
 #
 # find_package(delcert) gives delcert::exact, delcert::io and delcert::certify (each bringing what
-# it links) and the programs as delcert::delcert and delcert::delcert-certify. The built-in
-# manifold specs (builtin:NAME) are compiled into delcert_io, so they need no installed file.
+# it links), the programs as delcert::delcert and delcert::delcert-certify, and the function
+# delcert_add_certificate_test() (cmake/delcertCertificateTest.cmake). The built-in manifold specs
+# (builtin:NAME) are compiled into delcert_io, so they need no installed file.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -42,4 +43,6 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/delcertConfigVersio
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/cmake/delcertConfig.cmake
               ${PROJECT_BINARY_DIR}/cmake/delcertConfigVersion.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/delcertCertificateTest.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/delcert-run-certificate-test.cmake
         DESTINATION ${DELCERT_INSTALL_CMAKEDIR})
