@@ -1,0 +1,48 @@
+# `cmake --install BUILD [--prefix PREFIX]` (README.md, "Using the library"; docs/design.md §4):
+#
+#   bin/delcert, bin/delcert-certify                 the two programs
+#   lib/libdelcert_{exact,io,certify}.a              the libraries of the certifier (not delcert_core)
+#   include/delcert/{exact,io,certify}/...           their headers, included as "exact/x.hpp"
+#   lib/cmake/delcert/                               the package config: find_package(delcert)
+#
+# find_package(delcert) gives delcert::exact, delcert::io and delcert::certify (each bringing what
+# it links), the programs as delcert::delcert and delcert::delcert-certify, and the function
+# delcert_add_certificate_test() (cmake/delcertCertificateTest.cmake). The built-in manifold specs
+# (builtin:NAME) are compiled into delcert_io, so they need no installed file.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(DELCERT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/delcert)
+
+set_target_properties(delcert_exact PROPERTIES EXPORT_NAME exact)
+set_target_properties(delcert_io PROPERTIES EXPORT_NAME io)
+set_target_properties(delcert_certify PROPERTIES EXPORT_NAME certify)
+install(TARGETS delcert_exact delcert_io delcert_certify delcert delcert-certify
+        EXPORT delcertTargets
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        # One include root for the three folders, under delcert/ so that "io/" and the others
+        # do not land directly in the prefix's include/.
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/delcert)
+
+# Every header of the three folders. detail/ headers are private (not an API), but some public
+# headers include them (certify/rvd.hpp includes certify/detail/grid.hpp), so they are installed
+# too. tests/install/consumer/ compiles every installed public header on its own.
+foreach(folder exact io certify)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/delcert/${folder}
+          FILES_MATCHING PATTERN "*.hpp")
+endforeach()
+
+install(EXPORT delcertTargets NAMESPACE delcert:: DESTINATION ${DELCERT_INSTALL_CMAKEDIR})
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/delcertConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/cmake/delcertConfig.cmake
+                              INSTALL_DESTINATION ${DELCERT_INSTALL_CMAKEDIR})
+# 0.x: a minor version may break the interface, so only the same minor version is compatible.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/delcertConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/cmake/delcertConfig.cmake
+              ${PROJECT_BINARY_DIR}/cmake/delcertConfigVersion.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/delcertCertificateTest.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/delcert-run-certificate-test.cmake
+        DESTINATION ${DELCERT_INSTALL_CMAKEDIR})
