@@ -33,7 +33,7 @@ struct ChartEnclosure::Impl {
   std::vector<Interval> T_enc, Nn_enc;       // their enclosures
   ParametricSystem G;                        // k equations in (u, h)
   // G, d G_i / d h_j (k x k), d G_i / d u_a (k x m), for their approximate values (Newton).
-  std::vector<EnclosedPolynomial> g, gh, gu;
+  std::vector<DoublePolynomial> g, gh, gu;
   ChartOptions options;
 
   Impl(ParametricSystem system) : G(std::move(system)) {}
@@ -155,8 +155,8 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   auto linearise = [&](double h) {
     z[m] = h;
     const std::span<const double> zc(z.data(), z.size());
-    g = S.g[0].approx(zc);
-    jh = S.gh[0].approx(zc);
+    g = S.g[0](zc);
+    jh = S.gh[0](zc);
     return std::isfinite(g) && std::isfinite(jh);
   };
   // Newton for G(z_u, .) = 0 from h; false when it breaks down. On success g and jh hold the
@@ -176,7 +176,7 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   auto ju_finite = [&] {
     const std::span<const double> zc(z.data(), z.size());
     for (int a = 0; a < m; ++a)
-      if (!std::isfinite(S.gu[a].approx(zc))) return false;
+      if (!std::isfinite(S.gu[a](zc))) return false;
     return true;
   };
   for (int a = 0; a < m; ++a) z[a] = std::clamp(U[a].midpoint(), U[a].lo, U[a].hi);
@@ -186,7 +186,7 @@ bool guess_slab_scalar(const ChartEnclosure::Impl& S, const Box& U, std::span<co
   {
     const std::span<const double> zc(z.data(), z.size());
     const double inv = 1.0 / jh;
-    for (int a = 0; a < m; ++a) r[0] += std::abs(S.gu[a].approx(zc) * inv) * 0.5 * U[a].width();
+    for (int a = 0; a < m; ++a) r[0] += std::abs(S.gu[a](zc) * inv) * 0.5 * U[a].width();
   }
   for (int corner = 0; corner < (1 << m); ++corner) {
     for (int a = 0; a < m; ++a) z[a] = (corner >> a) & 1 ? U[a].hi : U[a].lo;
@@ -226,10 +226,10 @@ bool guess_slab(const ChartEnclosure::Impl& S, const Box& U, std::span<const dou
     for (int i = 0; i < k; ++i) z[m + i] = h[i];
     const std::span<const double> zc(z.data(), z.size());
     for (int i = 0; i < k; ++i) {
-      g(i) = S.g[i].approx(zc);
-      for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j].approx(zc);
+      g(i) = S.g[i](zc);
+      for (int j = 0; j < k; ++j) Jh(i, j) = S.gh[i * k + j](zc);
       if (with_u)
-        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a].approx(zc);
+        for (int a = 0; a < m; ++a) Ju(i, a) = S.gu[i * m + a](zc);
     }
     return g.allFinite() && Jh.allFinite() && (!with_u || Ju.allFinite());
   };
@@ -308,6 +308,27 @@ ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> 
   }
   std::vector<EnclosedPolynomial> G;
   for (const auto& f : F.equations()) G.push_back(substitute_affine(f, A, vars));
+  // The terms of G of degree 1 in u and 0 in h have the exact coefficients J_F(p) T (G_i(u, 0) =
+  // F_i(p + T u)): 0 when T spans ker J_F(p) (always for ChartEnclosure::at; checked here
+  // exactly). The interval expansion leaves tiny enclosures of 0 there; dropping them keeps G
+  // exact in those terms and its evaluations cheaper (a sparse chart keeps few terms).
+  {
+    const std::vector<mpq_class> J = F.jacobian_exact(p);  // k x N
+    bool kernel = true;
+    for (int i = 0; i < k && kernel; ++i)
+      for (int a = 0; a < m && kernel; ++a) {
+        mpq_class s = 0;
+        for (int v = 0; v < N; ++v) s += J[i * N + v] * T[v * m + a];
+        kernel = s == 0;
+      }
+    if (kernel)
+      for (auto& g : G)
+        g = g.without([m](std::span<const std::uint32_t> e) {
+          std::uint32_t du = 0, dh = 0;
+          for (std::size_t v = 0; v < e.size(); ++v) (static_cast<int>(v) < m ? du : dh) += e[v];
+          return du == 1 && dh == 0;
+        });
+  }
   auto impl = std::make_shared<Impl>(ParametricSystem::from_enclosures(G, m));
   impl->N = N;
   impl->m = m;
@@ -318,11 +339,11 @@ ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> 
   impl->T_enc = std::move(T_enc);
   impl->Nn_enc = std::move(Nn_enc);
   for (int i = 0; i < k; ++i) {
-    impl->g.push_back(G[i]);
-    for (int j = 0; j < k; ++j) impl->gh.push_back(G[i].derivative(m + j));
+    impl->g.push_back(G[i].midpoints());
+    for (int j = 0; j < k; ++j) impl->gh.push_back(G[i].derivative(m + j).midpoints());
   }
   for (int i = 0; i < k; ++i)
-    for (int a = 0; a < m; ++a) impl->gu.push_back(G[i].derivative(a));
+    for (int a = 0; a < m; ++a) impl->gu.push_back(G[i].derivative(a).midpoints());
   impl->options = options;
   impl_ = std::move(impl);
 }

@@ -61,8 +61,12 @@ void EnclosedPolynomial::normalize() {
     IA c = detail::to_ia(coef_[order[i]]);
     std::size_t j = i + 1;
     for (; j < n && equal(order[i], order[j]); ++j) c += detail::to_ia(coef_[order[j]]);
-    exps.insert(exps.end(), exps_.begin() + order[i] * vars_, exps_.begin() + (order[i] + 1) * vars_);
-    coef.push_back(detail::from_ia(c));
+    // A coefficient enclosed by [0, 0] is exactly 0 for every polynomial the result stands for:
+    // the term is dropped (the exact zeros of a sparse chart, e.g. T or Nn entries that are 0).
+    if (!(c.inf() == 0 && c.sup() == 0)) {
+      exps.insert(exps.end(), exps_.begin() + order[i] * vars_, exps_.begin() + (order[i] + 1) * vars_);
+      coef.push_back(detail::from_ia(c));
+    }
     i = j;
   }
   exps_ = std::move(exps);
@@ -137,15 +141,10 @@ EnclosedPolynomial EnclosedPolynomial::derivative(int var) const {
   return r;
 }
 
-double EnclosedPolynomial::approx(std::span<const double> x) const {
-  double sum = 0;
-  for (std::size_t i = 0; i < size(); ++i) {
-    double t = coef_[i].midpoint();
-    for (int v = 0; v < vars_; ++v)
-      for (std::uint32_t k = exps_[i * vars_ + v]; k > 0; --k) t *= x[v];
-    sum += t;
-  }
-  return sum;
+DoublePolynomial EnclosedPolynomial::midpoints() const {
+  std::vector<double> mid;
+  for (const auto& c : coef_) mid.push_back(c.midpoint());
+  return DoublePolynomial(vars_, mid, exps_);
 }
 
 }  // namespace delcert::exact

@@ -12,7 +12,9 @@
 // exact G (the chart's true equations) is one of the polynomials the result stands for, and
 // Krawczyk answers for every one of them (exact/krawczyk.hpp).
 //
-// #terms by num_variables exponents, row-major; terms sorted by exponent vector, distinct.
+// #terms by num_variables exponents, row-major; terms sorted by exponent vector, distinct, and
+// none with the coefficient enclosure [0, 0] (exactly zero: dropped) except in from_exact's
+// copies, which keep the exact polynomial's terms (all non-zero) and order.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +33,7 @@ class EnclosedPolynomial {
   static EnclosedPolynomial from_exact(const Polynomial& p);
   // The constant c over num_variables variables.
   static EnclosedPolynomial constant(Interval c, int num_variables);
-  // c + sum_j l_j x_j over linear.size() variables (zero coefficients are kept).
+  // c + sum_j l_j x_j over linear.size() variables.
   static EnclosedPolynomial affine(Interval constant, std::span<const Interval> linear);
 
   int num_variables() const { return vars_; }
@@ -50,9 +52,22 @@ class EnclosedPolynomial {
   EnclosedPolynomial scaled(const Interval& c) const;
   EnclosedPolynomial derivative(int var) const;
 
-  // An approximate value at x (coefficient midpoints, ordinary floating point): for Newton
-  // guesses only.
-  double approx(std::span<const double> x) const;
+  // The polynomial without the terms whose exponents satisfy `known_zero`: for a caller that
+  // knows those coefficients to be exactly 0 in the polynomial it stands for (it then stands for
+  // it still).
+  template <class Pred>
+  EnclosedPolynomial without(Pred known_zero) const {
+    EnclosedPolynomial r(vars_);
+    for (std::size_t i = 0; i < size(); ++i)
+      if (!known_zero(exponents(i))) {
+        r.exps_.insert(r.exps_.end(), exponents(i).begin(), exponents(i).end());
+        r.coef_.push_back(coef_[i]);
+      }
+    return r;
+  }
+
+  // The polynomial of the coefficients' midpoints, for approximate values (Newton guesses only).
+  DoublePolynomial midpoints() const;
 
  private:
   // Sorts the terms by exponents and adds the coefficients of equal monomials (upward rounding).

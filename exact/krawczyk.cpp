@@ -31,7 +31,6 @@ struct Prepared {
   std::vector<Interval> coef;
   Kind kind = Kind::exact;
   EnclosedPolynomial e;
-  std::uint32_t degree = 0;  // the largest exponent of any variable in e
 };
 using PreparedPtr = std::shared_ptr<const Prepared>;
 
@@ -50,10 +49,7 @@ namespace {
 
 PreparedPtr prepare_enclosed(EnclosedPolynomial e, Polynomial p = Polynomial(),
                              Prepared::Kind kind = Prepared::Kind::enclosed) {
-  std::uint32_t degree = 0;
-  for (std::size_t i = 0; i < e.size(); ++i)
-    for (std::uint32_t x : e.exponents(i)) degree = std::max(degree, x);
-  return std::make_shared<const Prepared>(Prepared{std::move(p), {}, kind, std::move(e), degree});
+  return std::make_shared<const Prepared>(Prepared{std::move(p), {}, kind, std::move(e)});
 }
 
 PreparedPtr prepare(Polynomial p) {
@@ -63,16 +59,23 @@ PreparedPtr prepare(Polynomial p) {
 
 PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
   return std::make_shared<const Prepared>(
-      Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial(), 1});
+      Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial()});
+}
+
+// Encloses x^e (e >= 1) over the interval x: x^e = (x^(e/2))^2 for even e (CGAL's square: the
+// exact range of a square, never below 0, tighter than x * x when x holds 0), x^(e-1) * x for odd
+// e; each step encloses its power by inclusion isotonicity (the caller holds upward rounding).
+IA power(const IA& x, std::uint32_t e) {
+  if (e == 1) return x;
+  if (e % 2 == 0) return CGAL::square(power(x, e / 2));
+  return power(x, e - 1) * x;
 }
 
 // Encloses the row over the box x (the caller holds upward rounding). The row stands for every
 // polynomial with its monomials and coefficients in their enclosures (an exact row: the one);
-// each term is its coefficient's enclosure times enclosures of the powers of the x_v, summed in
-// interval arithmetic, so by inclusion isotonicity the result encloses the value of each of them
-// on the box. The powers are tabulated once per call: x^1 = x, x^e = (x^(e/2))^2 for even e
-// (CGAL's square: the exact range of a square, never below 0, tighter than x * x when x holds 0),
-// x^e = x^(e-1) * x for odd e; each encloses x^e over the box by the same isotonicity.
+// each term is its coefficient's enclosure times enclosures of the powers of the x_v (power()),
+// summed in interval arithmetic, so by inclusion isotonicity the result encloses the value of
+// each of them on the box.
 IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
   if (p->kind == Prepared::Kind::enclosed_affine) {
     IA acc = detail::to_ia(p->coef[0]);
@@ -80,19 +83,13 @@ IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
     return acc;
   }
   const EnclosedPolynomial& e = p->e;
-  const std::size_t vars = x.size(), D = p->degree;
-  SmallBuffer<IA, 64> pw(vars * (D + 1));  // pw[v * (D + 1) + k] encloses x_v^k (k >= 1)
-  for (std::size_t v = 0; v < vars && D > 0; ++v) {
-    IA* row = &pw[v * (D + 1)];
-    row[1] = x[v];
-    for (std::size_t k = 2; k <= D; ++k) row[k] = k % 2 == 0 ? CGAL::square(row[k / 2]) : row[k - 1] * x[v];
-  }
   IA sum(0);
   for (std::size_t i = 0; i < e.size(); ++i) {
     IA t = detail::to_ia(e.coefficient(i));
     const auto ex = e.exponents(i);
     for (std::size_t v = 0; v < ex.size(); ++v)
-      if (ex[v] > 0) t = t * pw[v * (D + 1) + ex[v]];
+      if (ex[v] == 1) t = t * x[v];
+      else if (ex[v] > 1) t = t * power(x[v], ex[v]);
     sum = sum + t;
   }
   return sum;

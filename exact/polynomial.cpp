@@ -629,6 +629,17 @@ DoublePolynomial::DoublePolynomial(const Polynomial& p) : num_vars_(p.num_variab
   }
 }
 
+DoublePolynomial::DoublePolynomial(int num_vars, std::span<const double> coefficients,
+                                   std::span<const std::uint32_t> exponents)
+    : num_vars_(num_vars) {
+  for (std::size_t i = 0; i < coefficients.size(); ++i) {
+    coefficients_.push_back(coefficients[i]);
+    for (int v = 0; v < num_vars; ++v)
+      if (const std::uint32_t e = exponents[i * num_vars + v]; e > 0) factors_.push_back({static_cast<std::uint32_t>(v), e});
+    ends_.push_back(static_cast<std::uint32_t>(factors_.size()));
+  }
+}
+
 double DoublePolynomial::operator()(std::span<const double> x) const {
   // t = c * x_v * ... * x_v (e_v times, v increasing), summed in term order: skipping the zero
   // exponents changes none of the products.

@@ -153,6 +153,8 @@ class DoublePolynomial {
  public:
   DoublePolynomial() = default;
   explicit DoublePolynomial(const Polynomial& p);
+  // Terms given directly: coefficients[i] times prod_v x_v^exponents[i * num_vars + v].
+  DoublePolynomial(int num_vars, std::span<const double> coefficients, std::span<const std::uint32_t> exponents);
   double operator()(std::span<const double> x) const;
   int num_variables() const { return num_vars_; }
 

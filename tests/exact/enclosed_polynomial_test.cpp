@@ -103,8 +103,28 @@ TEST(EnclosedPolynomial, WideEnclosuresStandForEveryPolynomialInThem) {
                              (Polynomial::constant(cq, 1) + Polynomial::variable(0, 1));
     expect_encloses(sq, exact, "square of a wide affine form");
   }
-  // approx uses the midpoints: c^2 in [1, 4], 2c in [2, 4], 1; at x = 1: 2.5 + 3 + 1.
-  EXPECT_EQ(sq.approx(std::vector<double>{1.0}), 6.5);
+  // midpoints(): c^2 in [1, 4], 2c in [2, 4], 1; at x = 1: 2.5 + 3 + 1.
+  EXPECT_EQ(sq.midpoints()(std::vector<double>{1.0}), 6.5);
+}
+
+TEST(EnclosedPolynomial, ExactZerosAreDroppedAndKnownZerosRemoved) {
+  // [0, 0] coefficients (a chart's zero basis entries) leave no term; a tiny enclosure of 0 stays.
+  const std::vector<Interval> lin{{0, 0}, {2, 2}, {-0x1p-60, 0x1p-60}};
+  const EnclosedPolynomial a = EnclosedPolynomial::affine({1, 1}, lin);
+  EXPECT_EQ(a.size(), 3u);  // 1, 2 x2, [-2^-60, 2^-60] x3
+  EXPECT_EQ((a * EnclosedPolynomial::constant({0, 0}, 3)).size(), 0u);
+  // without(): the caller's known zeros (here the terms linear in x3 alone) are removed.
+  const EnclosedPolynomial w = (a * a).without([](std::span<const std::uint32_t> e) { return e[0] + e[1] == 0 && e[2] == 1; });
+  EXPECT_EQ(w.size(), (a * a).size() - 1);
+  for (std::size_t i = 0; i < w.size(); ++i) EXPECT_FALSE(w.exponents(i)[2] == 1 && w.exponents(i)[1] == 0);
+  // midpoints(): the same values as DoublePolynomial of the exact polynomial it came from.
+  Rng rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Polynomial p = random_polynomial(rng, 3, 5, -3, 3);
+    const DoublePolynomial d(p), m = EnclosedPolynomial::from_exact(p).midpoints();
+    const std::vector<double> x{rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)};
+    EXPECT_EQ(d(x), m(x)) << trial;  // dyadic coefficients: enclosures of width 0, same products
+  }
 }
 
 TEST(EnclosedPolynomial, ParametricSystemFromEnclosuresDecidesLikeTheExactOne) {
