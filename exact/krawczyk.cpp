@@ -141,6 +141,20 @@ std::vector<Polynomial> polynomials(const std::vector<PreparedPtr>& f) {
   return out;
 }
 
+// A square system of n equations in n unknowns starting with the head's rows, its parameters
+// taken as unknowns: the head's prepared rows and derivatives are shared, row i's parameter
+// derivatives first, then its unknowns' (variable order). The caller appends the tail rows.
+std::shared_ptr<SquareSystem::Impl> shared_head(const SquareSystem::Impl& H, int n) {
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  impl->n = n;
+  impl->f = H.f;
+  for (int i = 0; i < H.n; ++i) {
+    for (int a = 0; a < H.m; ++a) impl->df.push_back(H.du[i * H.m + a]);
+    for (int j = 0; j < H.n; ++j) impl->df.push_back(H.df[i * H.n + j]);
+  }
+  return impl;
+}
+
 }  // namespace
 
 SquareSystem::SquareSystem(std::vector<Polynomial> equations)
@@ -153,14 +167,7 @@ SquareSystem::SquareSystem(const ParametricSystem& head, std::vector<Polynomial>
     throw std::invalid_argument("square system: " + std::to_string(H.n) + " + " + std::to_string(tail.size()) +
                                 " equations in " + std::to_string(vars) + " variables");
   check_shape(tail, n, 0, "square system");
-  auto impl = std::make_shared<SquareSystem::Impl>();
-  impl->n = n;
-  impl->f = H.f;
-  // Row i of the head: its parameters' derivatives first, then its unknowns' (variable order).
-  for (int i = 0; i < H.n; ++i) {
-    for (int a = 0; a < H.m; ++a) impl->df.push_back(H.du[i * H.m + a]);
-    for (int j = 0; j < H.n; ++j) impl->df.push_back(H.df[i * H.n + j]);
-  }
+  auto impl = shared_head(H, n);
   for (auto& p : tail) {
     if (p.num_variables() != vars) p = Polynomial(vars);
     impl->f.push_back(prepare(std::move(p)));
@@ -175,13 +182,7 @@ SquareSystem SquareSystem::with_enclosed_rows(const ParametricSystem& head, std:
   if (n != vars)
     throw std::invalid_argument("square system: " + std::to_string(H.n) + " + " + std::to_string(tail.size()) +
                                 " equations in " + std::to_string(vars) + " variables");
-  auto impl = std::make_shared<SquareSystem::Impl>();
-  impl->n = n;
-  impl->f = H.f;
-  for (int i = 0; i < H.n; ++i) {
-    for (int a = 0; a < H.m; ++a) impl->df.push_back(H.du[i * H.m + a]);
-    for (int j = 0; j < H.n; ++j) impl->df.push_back(H.df[i * H.n + j]);
-  }
+  auto impl = shared_head(H, n);
   for (auto& row : tail) {
     if (static_cast<int>(row.linear.size()) != n)
       throw std::invalid_argument("square system: an affine row has " + std::to_string(row.linear.size()) +
