@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "exact/small_vector.hpp"
+
 namespace delcert::exact {
 
 // A closed interval [lo, hi] of reals, lo <= hi. Used for boxes (Krawczyk) and for reporting
@@ -37,8 +39,9 @@ struct Interval {
   bool is_finite() const { return std::isfinite(lo) && std::isfinite(hi); }
 };
 
-// An axis-aligned box, one interval per coordinate.
-using Box = std::vector<Interval>;
+// An axis-aligned box, one interval per coordinate (inline up to 8 of them: no allocation per box
+// in the subdivisions of the usual dimensions).
+using Box = SmallVector<Interval, 8>;
 
 // RAII: switches the rounding mode of the calling thread to upward and restores the previous
 // mode on destruction. Nesting is allowed. Not copyable.

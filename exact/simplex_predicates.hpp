@@ -51,13 +51,13 @@ class RationalPoint {
   explicit RationalPoint(std::vector<mpq_class> coordinates);
   int dimension() const { return static_cast<int>(coords_.size()); }
   const std::vector<mpq_class>& coordinates() const { return coords_; }
-  const std::vector<Interval>& enclosure() const { return enclosure_; }
+  const Box& enclosure() const { return enclosure_; }
   const mpz_class& denominator() const { return denominator_; }   // D > 0
   const std::vector<mpz_class>& numerators() const { return numerators_; }  // x_i = X_i / D
 
  private:
   std::vector<mpq_class> coords_;
-  std::vector<Interval> enclosure_;
+  Box enclosure_;
   mpz_class denominator_;
   std::vector<mpz_class> numerators_;
 };
