@@ -5,13 +5,19 @@
 // rational bases, T (N x m, ideally tangent: J_F(p) T = 0) and Nn (N x k, ideally complementary,
 // e.g. the rows of J_F(p)), and writes points near p as
 //   x(u, h) = p + T u + Nn h,   u in R^m (chart parameters), h in R^k (normal coordinates).
-// The chart equations G(u, h) = F(p + T u + Nn h) are formed EXACTLY by substituting the affine
-// expressions into F (Polynomial arithmetic), so G and its partial derivatives are exact
-// polynomials with rational coefficients and the parametric Krawczyk operator of
-// exact/krawczyk.hpp applies to them as it stands. (The alternative, evaluating F and J_F on the
-// interval box x(U, H) and applying the chain rule, keeps F's own structure but loses the
-// cancellation of the constant term F(p) ~ 0, which the exact expansion keeps: its constant term
-// is F(p) exactly, enclosed to one ulp.)
+// The chart equations G(u, h) = F(p + T u + Nn h) are formed by substituting the affine
+// expressions into F and expanding BY ENCLOSURES (exact/enclosed_polynomial.hpp: p exact, T and
+// Nn enclosed, every product and sum in interval arithmetic under upward rounding), so G stands
+// for a set of polynomials that contains the exact one, and the parametric Krawczyk operator of
+// exact/krawczyk.hpp answers for all of them at once (ParametricSystem::from_enclosures), the
+// exact G included. Coefficients enclosed by [0, 0] are exactly 0 and dropped; when T spans
+// ker J_F(p) (checked exactly here), the terms of degree 1 in u alone, whose exact coefficients
+// are J_F(p) T = 0, are dropped too, which keeps a sparse chart sparse. (Until 2026-12 the
+// expansion was exact, in rationals: a third of the restricted Voronoi diagram's time at m = 2.
+// The constant term is now F(p) to a few ulps of the magnitudes summed rather than of F(p)
+// itself, which no Krawczyk test notices. The alternative, evaluating F and J_F on the interval
+// box x(U, H) with the chain rule, keeps F's structure but loses the cancellation of F(p) ~ 0
+// and of the terms linear in u, which the expansion keeps.)
 //
 // enclose(U) for a box U of parameters returns, when it succeeds (status unique), a box H of h
 // and an interval box X of x such that:
