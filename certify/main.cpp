@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   using namespace delcert;
   CLI::App app{"delcert-certify: exact certificates for tangential Delaunay complexes of manifolds.\n"
                "Verdict on the last line: CERTIFIED (exit 0), REFUTED (1), UNDECIDED (3); bad input or usage: 2."};
+  app.set_version_flag("--version", "delcert-certify " DELCERT_VERSION, "print \"delcert-certify VERSION\" and exit");
   certify::CertifyOptions o;
+  o.threads = 0;  // one per hardware thread, the default of every command
   std::string out;
   bool no_times = false;
   std::string builtins;
@@ -42,13 +44,13 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-restricted", o.skip_restricted,
                "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores); the certificate does not depend on it")
+  app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   app.add_flag("--no-times", no_times, "leave wall-clock times out of the certificate (byte-identical reruns)");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version: exit 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

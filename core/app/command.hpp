@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -22,6 +23,22 @@ struct Command {
 
 // Help text for --manifold, listing the built-in names.
 std::string manifold_option_help();
+
+// Option validators (issue 13 §5). Each refuses a value with one short line, "--OPTION: what is
+// wrong; what to give" (exit status 2): numbers in the message are %g-style or named, never a
+// 300-digit bound, and a long input is shortened.
+
+// A whole number from 0 to `max`, decimal digits only (no sign, no hex or octal: CLI11 2.1 would
+// read "-1" as 2^64-1 and "010" as 8). Transforms the input to its canonical spelling.
+CLI::Validator whole_number(const std::string& what, std::uint64_t max);
+
+// A finite double > 0 (not NaN, not infinite, not out of double's range).
+CLI::Validator positive_number();
+
+// --threads: 0 (one per hardware thread, the default of every command) or 1 to kMaxThreads.
+inline constexpr int kMaxThreads = 256;
+CLI::Validator thread_count();
+std::string threads_help();
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);

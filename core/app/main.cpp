@@ -11,11 +11,12 @@
 int main(int argc, char** argv) {
   using namespace delcert::app;
   CLI::App app{"delcert: tangential Delaunay complexes of manifolds, refined until they are provably correct."};
+  app.set_version_flag("--version", "delcert " DELCERT_VERSION, "print \"delcert VERSION\" and exit");
   app.require_subcommand(1);
   std::vector<Command> commands{add_sample_command(app), add_tangential_command(app), add_refine_command(app)};
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version: exit 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

@@ -22,6 +22,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -45,7 +46,7 @@ struct RefineArgs {
   std::string manifold, points, out, mode = "practical";
   std::string eps, gamma0 = "0.1", alpha = "0.3", beta = "1.1", delta0;
   std::uint64_t seed = 1;
-  int threads = 1;
+  int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_inserted = 0, max_rounds = 0;
 };
 
@@ -197,13 +198,16 @@ Command add_refine_command(CLI::App& app) {
   sub->add_option("--delta0", args->delta0,
                   "protection ratio delta0: claimed protection delta0^2 (eps/9)^2 (default: Gamma0^ceil((m+1)/2), "
                   "the largest power of Gamma0 allowed by the paper's H3)");
-  sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")->capture_default_str();
-  sub->add_option("--threads", args->threads, "worker threads (0: all cores); the output does not depend on it")
+  sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));
+  sub->add_option("--threads", args->threads, threads_help())->capture_default_str()->transform(thread_count());
   sub->add_option("--max-inserted", args->max_inserted, "cap on inserted points (0: 20 x input + 20000); exit 4 when hit")
-      ->capture_default_str();
-  sub->add_option("--max-rounds", args->max_rounds, "cap on refinement rounds (0: 2000); exit 4 when hit")->capture_default_str();
+      ->capture_default_str()
+      ->transform(whole_number("a point count", std::numeric_limits<std::size_t>::max()));
+  sub->add_option("--max-rounds", args->max_rounds, "cap on refinement rounds (0: 2000); exit 4 when hit")
+      ->capture_default_str()
+      ->transform(whole_number("a round count", std::numeric_limits<std::size_t>::max()));
   sub->add_option("--out", args->out, "output directory (created if missing)")->required();
   return {sub, [args] { return run_refine(*args); }};
 }

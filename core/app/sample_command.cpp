@@ -1,5 +1,6 @@
 // delcert sample --manifold SPEC --eps E [--seed S] --out POINTS
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "core/app/command.hpp"
@@ -49,8 +50,10 @@ Command add_sample_command(CLI::App& app) {
   auto args = std::make_shared<SampleArgs>();
   auto* sub = app.add_subcommand("sample", "write an eps-net of M (farthest-point selection from a dense sample)");
   sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
-  sub->add_option("--eps", args->eps, "sparsity and sampling radius")->required()->check(CLI::PositiveNumber);
-  sub->add_option("--seed", args->seed, "random seed (same seed, same bytes)")->capture_default_str();
+  sub->add_option("--eps", args->eps, "sparsity and sampling radius")->required()->check(positive_number());
+  sub->add_option("--seed", args->seed, "random seed (same seed, same bytes)")
+      ->capture_default_str()
+      ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));
   sub->add_option("--out", args->out, "output points file (written atomically)")->required();
   return {sub, [args] { return run_sample(*args); }};
 }

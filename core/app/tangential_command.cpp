@@ -170,9 +170,7 @@ Command add_tangential_command(CLI::App& app) {
   sub->add_option("--points", args->points, "input points (delcert-points, OFF or nOFF), on M")->required();
   sub->add_option("--out", args->out, "output complex: maximal simplices, sorted (written atomically)")->required();
   sub->add_option("--stats", args->stats, "also write a JSON summary (counts, consistency, topology, timings)");
-  sub->add_option("--threads", args->threads, "worker threads (0: all cores); the output does not depend on it")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--threads", args->threads, threads_help())->capture_default_str()->transform(thread_count());
   return {sub, [args] { return run_tangential(*args); }};
 }
 

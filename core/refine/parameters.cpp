@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "exact/polynomial.hpp"
 
@@ -29,10 +30,17 @@ bool positive_double(const mpq_class& q) {
   return d > 0 && std::isfinite(d);
 }
 
+// Why a positive q is no positive finite double: named limits, never the 300-digit numbers.
+std::string double_range_reason(const mpq_class& q) {
+  return q > 1 ? "must be at most 1.8e308 (the largest double): the refiner computes with doubles"
+               : "must be at least 4.9e-324 (the smallest positive double): the refiner computes with doubles";
+}
+
 }  // namespace
 
 void validate_eps(const ExactParameter& eps) {
-  if (!(eps.value > 0 && positive_double(eps.value))) throw ParameterError("--eps", "must be positive");
+  if (!(eps.value > 0)) throw ParameterError("--eps", "must be positive");
+  if (!positive_double(eps.value)) throw ParameterError("--eps", double_range_reason(eps.value));
 }
 
 void validate(const Constants& c) {
@@ -40,8 +48,8 @@ void validate(const Constants& c) {
   if (!(c.gamma0.value > 0 && c.gamma0.value <= 1)) throw ParameterError("--gamma0", "must lie in (0, 1]");
   if (!(c.alpha.value > 0 && c.alpha.value < 1))
     throw ParameterError("--alpha", "must lie in (0, 1); the paper takes alpha < 1/2");
-  if (!(c.beta.value > 0 && positive_double(c.beta.value)))
-    throw ParameterError("--beta", "must be positive; the paper takes beta > 1");
+  if (!(c.beta.value > 0)) throw ParameterError("--beta", "must be positive; the paper takes beta > 1");
+  if (!positive_double(c.beta.value)) throw ParameterError("--beta", double_range_reason(c.beta.value));
   if (c.delta0 && !(c.delta0->value >= 0 && c.delta0->value < 1))
     throw ParameterError("--delta0", "must lie in [0, 1); the paper takes delta0 < 1/4");
 }

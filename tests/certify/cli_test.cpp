@@ -87,6 +87,34 @@ TEST(Cli, UsageErrorsExit2) {
   EXPECT_NE(r.err.find("no built-in manifold"), std::string::npos) << r.err;
 }
 
+// --version: one line, the version of project(delcert VERSION ...) in the top CMakeLists.txt.
+TEST(Cli, VersionPrintsOneLineFromTheProjectVersion) {
+  TempDir dir("version");
+  const std::string cmake = read_text(std::string(DELCERT_SOURCE_DIR) + "/CMakeLists.txt");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(cmake, m, std::regex(R"(project\(delcert VERSION ([0-9.]+))")));
+  RunResult r = run(binary() + " --version", dir);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, "delcert-certify " + m[1].str() + "\n");
+}
+
+// --threads defaults to 0 (one thread per hardware thread), as in every delcert command; a value
+// out of range is one short line and exit status 2.
+TEST(Cli, ThreadsDefaultToAllCoresAndRefusalsAreShort) {
+  TempDir dir("threads");
+  RunResult help = run(binary() + " --help", dir);
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_TRUE(std::regex_search(help.out, std::regex(R"(--threads [^\n]*=0\s)"))) << help.out;
+  EXPECT_NE(help.out.find("0 (the default) = one per hardware thread"), std::string::npos) << help.out;
+  const std::string base = binary() + " --manifold builtin:sphere-2 --points " + q(fixture("points/octahedron.off"));
+  for (const char* bad : {"-1", "257", "99999999999999999999", "two"}) {
+    RunResult r = run(base + " --threads " + bad, dir);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--threads: Value " + std::string(bad) + " not in range 0 to 256\n"), std::string::npos)
+        << r.err;
+  }
+}
+
 // Each input is read once, and the certificate hashes exactly the bytes that were checked. A FIFO
 // can be read only once: the run must end, naming the hash of what went through it (an earlier
 // version read the spec a second time to hash it and blocked here, or hashed other bytes).
