@@ -75,13 +75,8 @@ void EnclosedPolynomial::normalize() {
 
 EnclosedPolynomial EnclosedPolynomial::operator+(const EnclosedPolynomial& o) const {
   if (o.vars_ != vars_) throw std::invalid_argument("enclosed polynomial: sum of polynomials in different variables");
-  EnclosedPolynomial r(vars_);
-  r.exps_ = exps_;
-  r.exps_.insert(r.exps_.end(), o.exps_.begin(), o.exps_.end());
-  r.coef_ = coef_;
-  r.coef_.insert(r.coef_.end(), o.coef_.begin(), o.coef_.end());
-  r.normalize();
-  return r;
+  const EnclosedPolynomial both[] = {*this, o};
+  return sum(both, vars_);
 }
 
 EnclosedPolynomial EnclosedPolynomial::sum(std::span<const EnclosedPolynomial> terms, int num_variables) {
