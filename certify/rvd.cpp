@@ -35,7 +35,6 @@ struct Candidate {
   int index = -1;
   IA c;
   std::vector<IA> a2, b2;  // 2 a (m of them) and 2 b (k of them)
-  bool finite = false;     // every bound above is finite
 };
 
 struct Work {
@@ -102,10 +101,6 @@ class CellAnalysis {
         for (int v = 0; v < N_; ++v) t += ia(N_enc_[v * k_ + l]) * d[v];
         C.b2[l] = IA(2) * t;
       }
-      auto finite = [](const IA& x) { return std::isfinite(x.inf()) && std::isfinite(x.sup()); };
-      C.finite = finite(C.c);
-      for (const IA& x : C.a2) C.finite = C.finite && finite(x);
-      for (const IA& x : C.b2) C.finite = C.finite && finite(x);
       cands_.push_back(std::move(C));
     }
   }
@@ -523,13 +518,13 @@ class CellAnalysis {
       std::vector<exact::SquareSystem::AffineEnclosure> rows;
       for (int i : w.S) {
         const Candidate& C = cands_[i];
-        if (!C.finite) {  // an overflow decides nothing
-          ++report_.krawczyk_failures;
-          return false;
-        }
         exact::SquareSystem::AffineEnclosure row{exact::Interval{C.c.inf(), C.c.sup()}, {}};
         for (const IA& a : C.a2) row.linear.push_back({-a.sup(), -a.inf()});
         for (const IA& b : C.b2) row.linear.push_back({-b.sup(), -b.inf()});
+        if (!row.constant.is_finite() || !std::all_of(row.linear.begin(), row.linear.end(), [](const Interval& i) { return i.is_finite(); })) {
+          ++report_.krawczyk_failures;  // an overflow decides nothing
+          return false;
+        }
         rows.push_back(std::move(row));
       }
       it = systems_.emplace(simplex, exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(rows))).first;
