@@ -11,6 +11,8 @@
 #include "exact/chart.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
+#include "exact/linear_algebra.hpp"
+#include "exact/max_affine.hpp"
 #include "exact/number_types.hpp"
 #include "exact/small_buffer.hpp"
 
@@ -200,21 +202,44 @@ class CellAnalysis {
   }
 
   // COMBINED SIGNS. With R = {x in U x H : s_q(x) >= 0 for all q in S and in `far`} (R holds
-  // every point of Vor(p) in the box), for some t >= 0 and two of these candidates A, B:
-  //   * s_A + t s_B < 0 on all of U x H: R is empty (at a point of R both terms are >= 0), and
-  //     the box is discarded (true is returned);
-  //   * s_A - t s_B > 0 on all of U x H (A in S): at a point of R, s_A > t s_B >= 0, so A is
-  //     strictly farther than p at every point of Vor(p) in the box and its sub-boxes (THE SLAB
-  //     INVARIANT holds without it) and moves from S to `far`.
-  // Every statement is about the same R, so the order of the moves does not matter. t is chosen
-  // in floating point, the best for the midpoint coefficients (the bound is piecewise linear in
-  // t, with its extremum at 0 or at a breakpoint); only the interval hull, computed with the
-  // double t (exact), decides.
+  // every point of Vor(p) in the box), for some t_i >= 0 and candidates A, B_1..B_j of these:
+  //   * s_A + sum t_i s_Bi < 0 on all of U x H: R is empty (at a point of R every term is >= 0),
+  //     and the box is discarded (true is returned);
+  //   * s_A - sum t_i s_Bi > 0 on all of U x H (A in S): at a point of R, s_A > sum t_i s_Bi >= 0,
+  //     so A is strictly farther than p at every point of Vor(p) in the box and its sub-boxes
+  //     (THE SLAB INVARIANT holds without it) and moves from S to `far`.
+  // Every statement is about the same R, so the order of the moves does not matter. The t_i are
+  // chosen in floating point; only the interval hull, computed with the double t_i (exact),
+  // decides. Pairs (j = 1): t is the best for the midpoint coefficients (the bound is piecewise
+  // linear in t, with its extremum at 0 or at a breakpoint). VERTEX COMBINATIONS (j = m), where
+  // more than m + 1 candidates remain (a box around a vertex of the cell with a further candidate
+  // near it): t solves sum_i t_i grad_u s_Bi = -+ grad_u s_A for the lower ends of the
+  // coefficients (Cramer in floating point), so that the combination hardly varies with u; tried
+  // when every t_i has the required sign, on the first 8 m-subsets of the others.
   bool combined_signs(std::vector<int>& S, std::vector<int>& far, const Box& U, const Box& H) const {
-    const int d = m_ + k_, n = static_cast<int>(S.size()), all = n + static_cast<int>(far.size());
+    const int d = m_ + k_;
+    int n = static_cast<int>(S.size()), all = n + static_cast<int>(far.size());
     auto at = [&](int i) -> const Candidate& { return cands_[i < n ? S[i] : far[i - n]]; };
     auto box = [&](int a) -> const Interval& { return a < m_ ? U[a] : H[a - m_]; };
     auto coef = [&](const Candidate& C, int a) -> const IA& { return a < m_ ? C.a2[a] : C.b2[a - m_]; };
+    auto hull = [&](const Candidate& A, int j, const Candidate* const* B, const double* t) {  // of s_A + sum t_i s_Bi
+      IA f = A.c;
+      for (int i = 0; i < j; ++i) f += IA(t[i]) * B[i]->c;
+      for (int a = 0; a < d; ++a) {
+        IA g = coef(A, a);
+        for (int i = 0; i < j; ++i) g += IA(t[i]) * coef(*B[i], a);
+        f -= g * ia(box(a));
+      }
+      return f;
+    };
+    SmallBuffer<char, 64> drop(n);  // zero-initialised, no heap for the usual sizes (most boxes)
+    auto move_dropped = [&] {
+      int kept = 0;
+      for (int i = 0; i < n; ++i)
+        if (drop[i]) far.push_back(S[i]), drop[i] = 0; else S[kept++] = S[i];
+      S.resize(kept);
+      n = kept;
+    };
     // sign -1: is sup (s_A + t s_B) < 0? sign +1: is inf (s_A - t s_B) > 0?
     auto decides = [&](const Candidate& A, const Candidate& B, double sign) {
       auto value = [&](double t) {  // sign * (the bound at the midpoint coefficients)
@@ -231,35 +256,54 @@ class CellAnalysis {
         if (v > best_v) best_v = v, best = t;
       }
       if (best == 0) return false;
-      const IA T(-sign * best);
-      IA f = A.c + T * B.c;
-      for (int a = 0; a < d; ++a) f -= (coef(A, a) + T * coef(B, a)) * ia(box(a));
+      const Candidate* Bp = &B;
+      const double t = -sign * best;
+      const IA f = hull(A, 1, &Bp, &t);
       return sign > 0 ? f.inf() > 0 : f.sup() < 0;
     };
     for (int i = 0; i < all; ++i)
       for (int j = i + 1; j < all; ++j)
         if (decides(at(i), at(j), -1)) return true;
-    SmallBuffer<char, 64> drop(n);  // zero-initialised, no heap for the usual sizes (most boxes)
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(at(i), at(j), 1);
-    int kept = 0;
-    for (int i = 0; i < n; ++i)
-      if (drop[i]) far.push_back(S[i]); else S[kept++] = S[i];
-    S.resize(kept);
+    move_dropped();
+    if (n <= m_ || m_ > 3) return false;
+    SmallBuffer<int, 4> pos(m_);  // an m-subset of the others (indices of at() but A), increasing
+    for (int A = 0; A < n; ++A) {
+      for (int i = 0; i < m_; ++i) pos[i] = i;
+      for (int tried = 0; tried < 8 && !drop[A]; ++tried) {
+        if (tried > 0) {  // the next subset in lexicographic order
+          int i = m_ - 1;
+          while (i >= 0 && pos[i] == all - 1 - m_ + i) --i;
+          if (i < 0) break;
+          ++pos[i];
+          for (int j = i + 1; j < m_; ++j) pos[j] = pos[j - 1] + 1;
+        }
+        const Candidate* B[3];
+        double M[9], rhs[3], t[3];  // M t = grad_u s_A, column i = grad_u s_Bi
+        for (int i = 0; i < m_; ++i) B[i] = &at(pos[i] < A ? pos[i] : pos[i] + 1);
+        for (int r = 0; r < m_; ++r) {
+          for (int i = 0; i < m_; ++i) M[r * m_ + i] = B[i]->a2[r].inf();
+          rhs[r] = at(A).a2[r].inf();
+        }
+        const double det = exact::determinant(M, m_);
+        if (!(std::abs(det) > 0)) continue;
+        exact::cramer_solve(M, rhs, det, m_, t);
+        bool pos_t = true, neg_t = true;
+        for (double& x : std::span(t, m_)) {
+          pos_t &= x >= 0, neg_t &= x <= 0;
+          if (!std::isfinite(x)) pos_t = neg_t = false;
+          x = -x;  // s_A - sum t_i s_Bi has no u-gradient (at the lower ends)
+        }
+        if (neg_t && hull(at(A), m_, B, t).sup() < 0) return true;
+        if (pos_t && hull(at(A), m_, B, t).inf() > 0) drop[A] = 1;
+      }
+    }
+    move_dropped();
     return false;
   }
 
-  // Enclosure of |x - p|^2 = |T u + Nn h|^2 over U x H.
-  IA dist2(const Box& U, const Box& H) const {
-    IA s(0);
-    for (int v = 0; v < N_; ++v) {
-      IA t(0);
-      for (int a = 0; a < m_; ++a) t += ia(T_enc_[v * m_ + a]) * ia(U[a]);
-      for (int l = 0; l < k_; ++l) t += ia(N_enc_[v * k_ + l]) * ia(H[l]);
-      s += exact::square(t);
-    }
-    return s;
-  }
+  IA dist2(const Box& U, const Box& H) const { return ia(chart_.offset_norm2(U, H)); }
   std::vector<double> box_centre(const Box& U, const Box& H) const {
     Box X;
     std::vector<double> c(N_);
@@ -278,32 +322,6 @@ class CellAnalysis {
   }
   void undecided(const Work& w, std::vector<double> location, std::string reason) {
     report_.undecided.push_back({std::move(location), simplex_of(w.S), std::move(reason)});
-  }
-
-  // True when some chart equation G_e has no zero on U x H: its enclosure on the box has a strict
-  // sign, or G_e is monotone in some h_l on the box (dG_e/dh_l excludes 0) and its enclosures on
-  // the two faces h_l = lo, h_l = hi have the same strict sign (then every value on the box lies
-  // between values on the faces). The face test sees the sign near a slab edge that the plain
-  // enclosure of a wide box loses. Under upward rounding.
-  bool free_of_M(const Box& U, const Box& H) const {
-    SmallBuffer<Interval, 16> z(m_ + k_), face(m_ + k_);
-    std::copy(U.begin(), U.end(), z.begin());
-    std::copy(H.begin(), H.end(), z.begin() + m_);
-    const exact::ParametricSystem& G = chart_.chart_system();
-    auto strict = [](const Interval& g) { return g.lo > 0 || g.hi < 0; };
-    for (int e = 0; e < k_; ++e) {
-      if (strict(G.enclose(e, z.span()))) return true;
-      for (int l = 0; l < k_; ++l) {
-        if (!strict(G.enclose_derivative(e, l, z.span()))) continue;
-        std::copy(z.begin(), z.end(), face.begin());
-        face[m_ + l] = Interval{H[l].lo, H[l].lo};
-        const Interval a = G.enclose(e, face.span());
-        face[m_ + l] = Interval{H[l].hi, H[l].hi};
-        const Interval b = G.enclose(e, face.span());
-        if ((a.lo > 0 && b.lo > 0) || (a.hi < 0 && b.hi < 0)) return true;
-      }
-    }
-    return false;
   }
 
   // a := a ∩ b; false when empty.
@@ -340,7 +358,7 @@ class CellAnalysis {
   // `levels` times (an ambient search in the normal directions). Under upward rounding.
   bool excluded(const Box& U, Box H, const std::vector<int>& S, int levels) const {
     if (dist2(U, H).inf() >= r2_.sup()) return true;
-    if (free_of_M(U, H)) return true;
+    if (chart_.free_of_M(U, H)) return true;
     for (int i : S)
       if (sign_form(cands_[i], U, H).sup() < 0) return true;
     if (levels == 0) return false;
@@ -450,7 +468,12 @@ class CellAnalysis {
     double widest = 0;
     for (const auto& i : w.U) widest = std::max(widest, i.width());
     // A NaN enclosure (an overflow inside an operation) bounds nothing: +inf, never skipped.
-    const double raw_bound = exact::sqrt(d2).sup();
+    double raw_bound = exact::sqrt(d2).sup();
+    if (refining_ && resolved && n >= 2 && raw_bound > std::max(refine_below_, report_.covering_bound)) {
+      const double B = lagrangian_bound(w, H);  // sharper where a bisector cuts the box's far corner
+      if (B < 0) return discard();              // no point of Vor(p) in the box
+      raw_bound = std::min(raw_bound, exact::sqrt(IA(0, B)).sup());
+    }
     const double bound = std::isnan(raw_bound) ? INFINITY : raw_bound;
     // A box with `far` candidates may still hold parts outside the cell that their bisectors cut
     // off (a box with all of them in S would be split on): one more halving for its bound.
@@ -505,6 +528,28 @@ class CellAnalysis {
       c.unique_slab = unique_slab;
       stack.push_back(std::move(c));
     }
+  }
+
+  // LAGRANGIAN COVERING BOUND. On Vor(p) every s_q >= 0, so for lambda_q >= 0, |x - p|^2 <= g(x) =
+  // |x - p|^2 + sum_q lambda_q s_q(x) there. g is convex in (u, h) (a convex quadratic plus affine
+  // forms), so its maximum on U x H is at a corner, whose u is a corner c of U: with F_c, S_cq the
+  // upper ends of the enclosures of |x - p|^2 and s_q on {c} x H (they hold the exact values),
+  // max_c (F_c + sum_q lambda_q S_cq), evaluated rounded up (exact/max_affine.hpp), bounds |x - p|^2
+  // on Vor(p) ∩ (U x H); below 0, that part is empty. q: S, then `far` (combined_signs_max at most).
+  double lagrangian_bound(const Work& w, const Box& H) const {
+    std::vector<const Candidate*> Q;
+    for (auto* list : {&w.S, &w.far})
+      for (int i : *list) Q.push_back(&cands_[i]);
+    const int nc = 1 << m_, nq = std::min(static_cast<int>(Q.size()), opt_.combined_signs_max);
+    SmallBuffer<double, 8> F(nc);
+    SmallBuffer<double, 64> S(nc * nq);
+    Box Uc(m_);
+    for (int c = 0; c < nc; ++c) {
+      for (int a = 0; a < m_; ++a) Uc[a] = Interval::point((c >> a) & 1 ? w.U[a].hi : w.U[a].lo);
+      F[c] = chart_.offset_norm2(Uc, H).hi;
+      for (int j = 0; j < nq; ++j) S[c * nq + j] = sign_form(*Q[j], Uc, H).sup();
+    }
+    return exact::max_affine_upper_bound(F.span(), S.span(), nq);
   }
 
   // Krawczyk on {G = 0, s_{q_i} = 0} in U x H. True when decided (a vertex recorded, or none).

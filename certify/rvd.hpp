@@ -36,8 +36,9 @@
 // U x H_eff (sign of the affine form |q|^2 - |p|^2 - 2 x.(q - p), interval arithmetic under
 // upward rounding); U is discarded when U x H_eff is excluded (outside the ball, or a candidate
 // certainly closer; with a slab that is not the chart's, also after the normal halving). COMBINED
-// SIGNS (rvd.cpp), with candidates A, B and t >= 0: U is discarded when s_A + t s_B < 0 on U x H_eff,
-// and A is dropped when s_A - t s_B > 0 there (A strictly farther than p wherever B is not closer).
+// SIGNS (rvd.cpp), with candidates A, B_i and t_i >= 0 (one B, or m of them): U is discarded when
+// s_A + sum t_i s_Bi < 0 on U x H_eff, and A is dropped when s_A - sum t_i s_Bi > 0 there (A
+// strictly farther than p wherever no B_i is closer).
 // A child box whose parent's slab is the chart's starts from it: Krawczyk on U x Hpar contracts
 // it to the child's own slab (no new guess, no difference test: Hpar already holds the invariant).
 //   * a box with |S(U)| <= m holds no restricted Voronoi vertex (a vertex needs m + 1 nearest

@@ -12,6 +12,7 @@
 #include "exact/detail/interval_polynomial.hpp"
 #include "exact/enclosed_polynomial.hpp"
 #include "exact/number_types.hpp"
+#include "exact/small_buffer.hpp"
 
 namespace delcert::exact {
 
@@ -404,6 +405,41 @@ bool ChartEnclosure::image(const Box& U, const Box& H, Box& X) const {
     X[v] = detail::from_ia(acc);
   }
   return true;
+}
+
+Interval ChartEnclosure::offset_norm2(const Box& U, const Box& H) const {
+  const Impl& S = *impl_;
+  detail::EnsureUpward guard;
+  IA s(0);
+  for (int v = 0; v < S.N; ++v) {
+    IA t(0);
+    for (int a = 0; a < S.m; ++a) t += detail::to_ia(S.T_enc[v * S.m + a]) * IA(U[a].lo, U[a].hi);
+    for (int l = 0; l < S.k; ++l) t += detail::to_ia(S.Nn_enc[v * S.k + l]) * IA(H[l].lo, H[l].hi);
+    s += square(t);
+  }
+  return detail::from_ia(s);
+}
+
+bool ChartEnclosure::free_of_M(const Box& U, const Box& H) const {
+  const int m = impl_->m, k = impl_->k;
+  SmallBuffer<Interval, 16> z(m + k), face(m + k);
+  std::copy(U.begin(), U.end(), z.begin());
+  std::copy(H.begin(), H.end(), z.begin() + m);
+  const ParametricSystem& G = impl_->G;
+  auto strict = [](const Interval& g) { return g.lo > 0 || g.hi < 0; };
+  for (int e = 0; e < k; ++e) {
+    if (strict(G.enclose(e, z.span()))) return true;
+    for (int l = 0; l < k; ++l) {
+      if (!strict(G.enclose_derivative(e, l, z.span()))) continue;
+      std::copy(z.begin(), z.end(), face.begin());
+      face[m + l] = Interval{H[l].lo, H[l].lo};
+      const Interval a = G.enclose(e, face.span());
+      face[m + l] = Interval{H[l].hi, H[l].hi};
+      const Interval b = G.enclose(e, face.span());
+      if ((a.lo > 0 && b.lo > 0) || (a.hi < 0 && b.hi < 0)) return true;
+    }
+  }
+  return false;
 }
 
 ChartResult ChartEnclosure::enclose_in(const Box& U, const Box& H) const {

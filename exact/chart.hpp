@@ -118,6 +118,15 @@ class ChartEnclosure {
   ChartResult enclose_in(const Box& U, const Box& H) const;
   // Interval hull of p + T U + Nn H, outward rounded. False (and X unspecified) on overflow.
   bool image(const Box& U, const Box& H, Box& X) const;
+  // Enclosure of |x(u, h) - p|^2 = |T u + Nn h|^2 over U x H, outward rounded (an overflow gives
+  // an infinite or NaN bound).
+  Interval offset_norm2(const Box& U, const Box& H) const;
+  // True when no (u, h) in U x H has G(u, h) = 0 (no point of M there): some G_e's enclosure on
+  // the box has a strict sign, or G_e is monotone in some h_l on the box (dG_e/dh_l excludes 0)
+  // and its enclosures on the faces h_l = lo and h_l = hi have the same strict sign (every value
+  // on the box lies between values on those faces). The face test sees the sign near a slab edge
+  // that the plain enclosure of a wide box loses.
+  bool free_of_M(const Box& U, const Box& H) const;
 
   struct Impl;
 
