@@ -53,6 +53,7 @@ struct Work {
   bool vertex_decided = false;
   bool chart_slab = false;   // H is the parent's slab from the chart (not Hpar)
   bool unique_slab = false;  // ... and Krawczyk proved one point of M over each u in it
+  bool settled = false;      // H is the chart's slab of this very box (left for the second pass)
 };
 
 class CellAnalysis {
@@ -393,14 +394,17 @@ class CellAnalysis {
     // every point of M ∩ B(p, r) ∩ Vor(p) over U) and Krawczyk on U x H contracts it to this box's
     // own: no Newton guess, no difference test. `none`: no point of M in the region. Any outcome
     // but a proved unique point takes the full path below on the same region.
-    bool chart_slab = false, unique_slab = false;
-    if (w.unique_slab) {
+    // A box left for the second pass keeps the chart's slab it got on its first visit: the chart
+    // step would only repeat itself.
+    bool chart_slab = w.settled, unique_slab = w.settled && w.unique_slab;
+    if (w.unique_slab && !w.settled) {
       const exact::ChartResult tight = chart_.enclose_in(w.U, H);
       if (tight.status == exact::ChartStatus::none) return discard();
       if (tight.status == exact::ChartStatus::unique) {
         H = tight.H, chart_slab = unique_slab = true;
         // Where the slope of the chart varies (far from p) one step contracts little: repeat on the
         // contraction (each result holds the unique point over every u) while a side shrinks by 1/4.
+        // (Needed: with one step, cells of a torus of revolution reach their ball's boundary.)
         for (int again = 0, shrunk = 1; again < 8 && shrunk; ++again) {
           const exact::ChartResult next = chart_.enclose_in(w.U, H);
           if (next.status != exact::ChartStatus::unique) break;
@@ -484,7 +488,7 @@ class CellAnalysis {
     // vertices of the cell are known and PURITY can be checked.
     // It keeps its own slab and lists (THE SLAB INVARIANT holds for them on its own box).
     if (resolved && !refining_ && (!fine || n >= 2)) {
-      w.chart_slab = chart_slab, w.unique_slab = unique_slab;
+      w.chart_slab = chart_slab, w.unique_slab = unique_slab, w.settled = chart_slab;
       pending_.push_back(std::move(w));
       return;
     }
