@@ -95,9 +95,10 @@ def test_tangential_complex_of_a_sample_certifies_or_is_refuted_as_by_the_comman
 
 
 def test_tangential_accepts_a_points_file():
+    # The octahedron: each vertex's star is its four triangles; eight triangles in all.
     simplices = delcert.tangential("builtin:sphere-2", str(FIXTURES / "points" / "octahedron.off"))
-    assert sorted(map(tuple, simplices.tolist())) == sorted(map(tuple, simplices.tolist()))
     assert simplices.shape == (8, 3)
+    assert np.bincount(simplices.ravel()).tolist() == [4] * 6
 
 
 # ------------------------------------------------------------------------------- refine and certify
@@ -205,14 +206,16 @@ def test_bad_complex_and_claims_have_the_command_messages(torus_refined, tmp_pat
 # ---------------------------------------------------------------------------- GUDHI's tangential complex
 
 def test_gudhi_tangential_complex_in_five_lines():
+    """The README's example: GUDHI's tangential complex of an eps-net of S^2, certified."""
     gudhi = pytest.importorskip("gudhi")
     points = delcert.sample("builtin:sphere-2", eps=0.3, seed=1)
-    tc = gudhi.TangentialComplex(intrisic_dim=2, points=points)
-    tc.compute_tangential_complex()
-    triangles = np.array([s for s, _ in tc.create_simplex_tree().get_skeleton(2) if len(s) == 3])
-    certificate = delcert.certify("builtin:sphere-2", points, triangles, threads=THREADS, skip_restricted=True)
-    # GUDHI estimates tangent planes by local PCA, delcert's T_p is exact: the verdict may go either
-    # way, but it is decided, and check 3 compares GUDHI's complex with the exact Del_TM(P).
-    assert certificate["verdict"] in ("CERTIFIED", "REFUTED")
-    stars = next(c for c in certificate["checks"] if c["name"] == "stars")
-    assert stars["verdict"] in ("CERTIFIED", "REFUTED")
+    tc = gudhi.TangentialComplex(intrisic_dim=2, points=points); tc.compute_tangential_complex()
+    triangles = [s for s, _ in tc.create_simplex_tree().get_skeleton(2) if len(s) == 3]
+    certificate = delcert.certify("builtin:sphere-2", points, triangles, threads=THREADS)
+    # GUDHI estimates T_p by local PCA, delcert-certify recomputes Del_TM(P) with the exact T_p: on
+    # this net (80 points, seed 1) the two agree and every check passes.
+    assert certificate["verdict"] == "CERTIFIED"
+    assert certificate["inputs"]["complex"]["simplices"] == len(triangles) == 156
+    # One triangle fewer is refuted: the certificate is about GUDHI's complex, not recomputed instead of it.
+    assert delcert.certify("builtin:sphere-2", points, triangles[1:], threads=THREADS,
+                           skip_restricted=True)["verdict"] == "REFUTED"
