@@ -22,6 +22,7 @@
 #include <stdlib.h>  // mkdtemp
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -89,8 +90,22 @@ std::string rewrite_message(std::string message, const std::string& temp_prefix,
     while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
     if (end == head.size() || end >= message.size() || message[end] != ':') continue;
     const long line = std::stol(message.substr(head.size(), end - head.size()));
-    if (line > a.header_lines)
-      message = a.name + " row " + std::to_string(line - a.header_lines - 1) + message.substr(end);
+    if (line <= a.header_lines) continue;
+    message = a.name + " row " + std::to_string(line - a.header_lines - 1) + message.substr(end);
+    // Other lines the message names ("identical to point 3 on line 6", "first on line 9") are rows too.
+    const std::string on_line = "on line ";
+    for (std::size_t at = 0; (at = message.find(on_line, at)) != std::string::npos;) {
+      std::size_t e = at + on_line.size();
+      while (e < message.size() && std::isdigit(static_cast<unsigned char>(message[e]))) ++e;
+      const long other = e > at + on_line.size() ? std::stol(message.substr(at + on_line.size(), e - at - on_line.size())) : 0;
+      if (other <= a.header_lines) {
+        at = e;
+        continue;
+      }
+      const std::string row = "in row " + std::to_string(other - a.header_lines - 1);
+      message.replace(at, e - at, row);
+      at += row.size();
+    }
   }
   return message;
 }
