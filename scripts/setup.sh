@@ -4,9 +4,12 @@
 set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer and clang's sanitizer runtimes) are for scripts/fuzz.sh;
 # GCC's sanitizer runtimes (libasan8, libubsan1, for scripts/sanitize.sh) come with build-essential.
+# python3-dev, pybind11-dev, python3-pybind11 and python3-numpy build the Python module (python/),
+# python3-pytest tests it, python3-gudhi runs its GUDHI example (tests/python/).
 PACKAGES=(build-essential cmake pkg-config libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev
-          clang libclang-rt-14-dev)
+          clang libclang-rt-14-dev
+          python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-gudhi)
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
