@@ -5,11 +5,11 @@
 set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer and clang's sanitizer runtimes) are for scripts/fuzz.sh;
 # GCC's sanitizer runtimes (libasan8, libubsan1, for scripts/sanitize.sh) come with build-essential.
-# chromium (headless) opens the HTML report in its test (tests/report/, label browser); curl, ca-certificates
+# chromium (headless) opens the HTML report in its test (tests/report/, label browser; python3 runs it); curl, ca-certificates
 # and openssl fetch and check the pinned three.js the report inlines (scripts/fetch_threejs.sh, after the packages).
 PACKAGES=(build-essential cmake pkg-config libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev
-          clang libclang-rt-14-dev chromium curl ca-certificates openssl)
+          clang libclang-rt-14-dev chromium python3 curl ca-certificates openssl)
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
