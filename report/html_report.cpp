@@ -101,6 +101,15 @@ std::string witness_reason(const nlohmann::json& w) {
   return w.dump();
 }
 
+// Where a witness was found, when it says: "at vertex 2, point 31".
+std::string witness_place(const nlohmann::json& w) {
+  std::string out;
+  for (const auto& [key, label] : {std::pair{"at_vertex", "at vertex "}, std::pair{"point", "point "}})
+    if (w.is_object() && w.contains(key) && w[key].is_number_integer())
+      out += (out.empty() ? "" : ", ") + std::string(label) + std::to_string(w[key].get<long long>());
+  return out;
+}
+
 std::string text_of(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string();
 }
@@ -182,7 +191,8 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
                escape_html(entry["simplex"].dump()) + "\"><span class=\"wcheck\">check " + std::to_string(id) + " " +
                escape_html(name) + " (" + escape_html(verdict) + ")</span> <span class=\"wkind\">" +
                escape_html(entry["kind"].get<std::string>()) + "</span> <span class=\"wsimplex\">" +
-               escape_html(entry["simplex"].dump()) + "</span><div class=\"wreason\">" +
+               escape_html(entry["simplex"].dump()) + "</span> <span class=\"wplace\">" +
+               escape_html(witness_place(w)) + "</span><div class=\"wreason\">" +
                escape_html(entry["reason"].get<std::string>()) +
                (k == 0 && !check_reason.empty() ? " <em>(check: " + escape_html(check_reason) + ")</em>" : "") +
                "</div></li>\n";
