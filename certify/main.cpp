@@ -2,7 +2,7 @@
 //
 //   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted|intrinsic]
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
-//                   [--skip-restricted]
+//                   [--skip-restricted] [--report REPORT.html]
 //
 // Prints one line per check and, last, "verdict: CERTIFIED|REFUTED|UNDECIDED".
 // Exit status: 0 CERTIFIED, 1 REFUTED, 3 UNDECIDED, 2 bad input or usage (no certificate written).
@@ -17,6 +17,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/spec.hpp"
+#include "report/html_report.hpp"  // presentation only: reads the finished certificate
 
 int main(int argc, char** argv) {
   using namespace delcert;
@@ -44,6 +45,10 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-restricted", o.skip_restricted,
                "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
+  std::string report_path;
+  app.add_option("--report", report_path,
+                 "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the "
+                 "complex with the witnesses); written atomically with --out");
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
@@ -74,11 +79,21 @@ int main(int argc, char** argv) {
   try {
     // --out must not be (the same file as) an input, nor unwritable: checked before any work.
     if (!out.empty()) io::check_output_path(out, "--out", {o.manifold, o.points, o.complex, o.claims});
+    if (!report_path.empty() && !report::viewer_available()) {
+      std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n";
+      return 2;
+    }
+    if (!report_path.empty()) io::check_output_path(report_path, "--report", {o.manifold, o.points, o.complex, o.claims}, {out});
     certify::Certificate cert = certify::run_certify(o);
-    if (!out.empty()) io::write_file_atomically(out, cert.to_text(!no_times));
+    std::vector<std::pair<std::string, std::string>> files;
+    if (!out.empty()) files.emplace_back(out, cert.to_text(!no_times));
+    if (!report_path.empty())
+      files.emplace_back(report_path, report::format_html_report(cert.to_json(!no_times), o.points, o.complex));
+    io::write_files_atomically(files);
     for (const auto& c : cert.checks)
       std::printf("check %-2d %-28s %-10s %s\n", c.number(), c.name(), certify::to_string(c.verdict), c.summary.c_str());
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
+    if (!report_path.empty()) std::printf("report             %s\n", report_path.c_str());
     certify::Verdict v = cert.overall();
     std::printf("verdict: %s\n", certify::to_string(v));
     std::fflush(stdout);

@@ -6,4 +6,11 @@ bash scripts/setup.sh
 if [ "${CI:-}" = "true" ]; then export DELCERT_WERROR=ON; fi
 bash scripts/build.sh
 cd build
+# After setup.sh every optional part is there: its tests must be too, not quietly left out.
+for label in python browser install; do
+  if ! ctest -N -L "$label" | grep -q "Total Tests: [1-9]"; then
+    echo "test.sh: no tests with label $label were configured (see cmake's status lines in build/)" >&2
+    exit 1
+  fi
+done
 ctest --output-on-failure -j "${JOBS:-$(nproc)}"

@@ -76,6 +76,39 @@ TEST(Cli, OutputMayNotOverwriteAnInput) {
   EXPECT_EQ(run(base + " --no-times --out " + q(dir.file("cert.json")), dir).exit_code, 0);
 }
 
+// --report writes the HTML page together with --out (all or nothing), refuses to overwrite an
+// input or the certificate, and, in a build without three.js, refuses with exit 2 and says what
+// to do instead of writing a page without its viewer. The page itself: tests/report/.
+TEST(Cli, ReportIsWrittenWithTheCertificateOrRefused) {
+  TempDir dir("cli-report");
+  const std::string oct = fixture("points/octahedron.off"), out = dir.file("cert.json"), page = dir.file("r.html");
+  const std::string base = binary() + " --manifold builtin:sphere-2 --points " + q(oct) + " --complex " +
+                           q(fixture("certify/octahedron-missing.complex")) + " --no-times --threads 2";
+  RunResult r = run(base + " --out " + q(out) + " --report " + q(page), dir);
+  if (r.exit_code == 2) {
+    EXPECT_NE(r.err.find("needs three.js"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("scripts/setup.sh"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(std::filesystem::exists(page));
+    GTEST_SKIP() << "this build has no three.js: " << r.err;
+  }
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(last_line(r.out), "verdict: REFUTED");
+  EXPECT_NE(r.out.find("report             " + page), std::string::npos) << r.out;
+  const std::string html = read_text(page);
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("<li class=\"witness"), std::string::npos);
+  EXPECT_EQ(run(base + " --report " + q(dir.file("again.html")), dir).exit_code, 1);
+  EXPECT_EQ(read_text(dir.file("again.html")), html);  // the same bytes, without --out too
+  // Not over an input, nor over the certificate: exit 2, nothing written.
+  for (const std::string& bad : {oct, out}) {
+    const std::string before = read_text(bad);
+    RunResult refused = run(base + " --out " + q(out) + " --report " + q(bad), dir);
+    EXPECT_EQ(refused.exit_code, 2) << bad << refused.err;
+    EXPECT_EQ(read_text(bad), before);
+  }
+}
+
 TEST(Cli, UsageErrorsExit2) {
   TempDir dir("usage");
   EXPECT_EQ(run(binary(), dir).exit_code, 2);
