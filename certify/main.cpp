@@ -79,10 +79,8 @@ int main(int argc, char** argv) {
   try {
     // --out must not be (the same file as) an input, nor unwritable: checked before any work.
     if (!out.empty()) io::check_output_path(out, "--out", {o.manifold, o.points, o.complex, o.claims});
-    if (!report_path.empty() && !report::viewer_available()) {
-      std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n";
-      return 2;
-    }
+    if (!report_path.empty() && !report::viewer_available())
+      return std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n", 2;
     if (!report_path.empty()) io::check_output_path(report_path, "--report", {o.manifold, o.points, o.complex, o.claims}, {out});
     certify::Certificate cert = certify::run_certify(o);
     std::vector<std::pair<std::string, std::string>> files;

@@ -210,13 +210,11 @@ class CellAnalysis {
   //     so A is strictly farther than p at every point of Vor(p) in the box and its sub-boxes
   //     (THE SLAB INVARIANT holds without it) and moves from S to `far`.
   // Every statement is about the same R, so the order of the moves does not matter. The t_i are
-  // chosen in floating point; only the interval hull, computed with the double t_i (exact),
-  // decides. Pairs (j = 1): t is the best for the midpoint coefficients (the bound is piecewise
-  // linear in t, with its extremum at 0 or at a breakpoint). VERTEX COMBINATIONS (j = m), where
-  // more than m + 1 candidates remain (a box around a vertex of the cell with a further candidate
-  // near it): t solves sum_i t_i grad_u s_Bi = -+ grad_u s_A for the lower ends of the
-  // coefficients (Cramer in floating point), so that the combination hardly varies with u; tried
-  // when every t_i has the required sign, on the first 8 m-subsets of the others.
+  // chosen in floating point; only the interval hull with the double t_i (exact) decides. Pairs
+  // (j = 1): the best t for the midpoint coefficients (at 0 or at a breakpoint of a piecewise
+  // linear bound). VERTEX COMBINATIONS (j = m, with more than m + 1 candidates: near a vertex of
+  // the cell): t solves sum_i t_i grad_u s_Bi = -+ grad_u s_A at the lower ends (Cramer), so the
+  // form hardly varies with u; tried when the t_i have the needed sign, on 8 m-subsets at most.
   bool combined_signs(std::vector<int>& S, std::vector<int>& far, const Box& U, const Box& H) const {
     const int d = m_ + k_;
     int n = static_cast<int>(S.size()), all = n + static_cast<int>(far.size());
@@ -269,20 +267,14 @@ class CellAnalysis {
       for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(at(i), at(j), 1);
     move_dropped();
     if (n <= m_ || m_ > 3) return false;
-    SmallBuffer<int, 4> pos(m_);  // an m-subset of the others (indices of at() but A), increasing
-    for (int A = 0; A < n; ++A) {
-      for (int i = 0; i < m_; ++i) pos[i] = i;
-      for (int tried = 0; tried < 8 && !drop[A]; ++tried) {
-        if (tried > 0) {  // the next subset in lexicographic order
-          int i = m_ - 1;
-          while (i >= 0 && pos[i] == all - 1 - m_ + i) --i;
-          if (i < 0) break;
-          ++pos[i];
-          for (int j = i + 1; j < m_; ++j) pos[j] = pos[j - 1] + 1;
-        }
+    for (int A = 0; A < n; ++A)  // the m-subsets of the others (all <= combined_signs_max), as masks
+      for (int mask = 0, tried = 0; mask < (1 << std::min(all - 1, 20)) && tried < 8 && !drop[A]; ++mask) {
+        if (__builtin_popcount(mask) != m_) continue;
+        ++tried;
         const Candidate* B[3];
         double M[9], rhs[3], t[3];  // M t = grad_u s_A, column i = grad_u s_Bi
-        for (int i = 0; i < m_; ++i) B[i] = &at(pos[i] < A ? pos[i] : pos[i] + 1);
+        for (int o = 0, i = 0; i < m_; ++o)
+          if (mask >> o & 1) B[i++] = &at(o < A ? o : o + 1);
         for (int r = 0; r < m_; ++r) {
           for (int i = 0; i < m_; ++i) M[r * m_ + i] = B[i]->a2[r].inf();
           rhs[r] = at(A).a2[r].inf();
@@ -299,7 +291,6 @@ class CellAnalysis {
         if (neg_t && hull(at(A), m_, B, t).sup() < 0) return true;
         if (pos_t && hull(at(A), m_, B, t).inf() > 0) drop[A] = 1;
       }
-    }
     move_dropped();
     return false;
   }
@@ -534,12 +525,10 @@ class CellAnalysis {
     }
   }
 
-  // LAGRANGIAN COVERING BOUND. On Vor(p) every s_q >= 0, so for lambda_q >= 0, |x - p|^2 <= g(x) =
-  // |x - p|^2 + sum_q lambda_q s_q(x) there. g is convex in (u, h) (a convex quadratic plus affine
-  // forms), so its maximum on U x H is at a corner, whose u is a corner c of U: with F_c, S_cq the
-  // upper ends of the enclosures of |x - p|^2 and s_q on {c} x H (they hold the exact values),
-  // max_c (F_c + sum_q lambda_q S_cq), evaluated rounded up (exact/max_affine.hpp), bounds |x - p|^2
-  // on Vor(p) ∩ (U x H); below 0, that part is empty. q: S, then `far` (combined_signs_max at most).
+  // LAGRANGIAN COVERING BOUND. On Vor(p), |x - p|^2 <= g = |x - p|^2 + sum_q lambda_q s_q (all s_q >= 0,
+  // lambda >= 0). g is convex in (u, h), so max g on U x H is at some u = corner c of U: with F_c, S_cq
+  // the upper ends of enclosures of |x - p|^2, s_q on {c} x H, max_c (F_c + sum_q lambda_q S_cq) rounded
+  // up (exact/max_affine.hpp) bounds |x - p|^2 on Vor(p) ∩ (U x H), empty if < 0. q: S, then `far`.
   double lagrangian_bound(const Work& w, const Box& H) const {
     std::vector<const Candidate*> Q;
     for (auto* list : {&w.S, &w.far})
