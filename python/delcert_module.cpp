@@ -290,44 +290,6 @@ std::string rational_text(const py::handle& obj, const std::string& option) {
                           py::str(py::type::of(obj).attr("__name__")).cast<std::string>());
 }
 
-// As refine_command.cpp's rational_option / constants_option, with the same messages and the
-// same order of checks; the options are named as the command line names them.
-refine::ExactParameter rational_option(const std::string& name, const std::string& text) {
-  try {
-    return refine::ExactParameter::parse(text);
-  } catch (const std::invalid_argument&) {
-    throw io::InputError(name, 0, "'" + text + "' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10");
-  }
-}
-
-struct RefineTexts {
-  std::optional<std::string> eps, delta0;
-  std::string gamma0, alpha, beta;
-};
-
-refine::Constants constants_option(const RefineTexts& a, int m) {
-  auto checked = [](auto&& validate) {
-    try {
-      validate();
-    } catch (const refine::ParameterError& e) {
-      throw io::InputError(e.option(), 0, e.reason());
-    }
-  };
-  refine::Constants c;
-  if (!a.delta0) c.gamma0 = rational_option("--gamma0", a.gamma0);
-  if (a.eps) {
-    c.eps = rational_option("--eps", *a.eps);
-    checked([&] { refine::validate_eps(*c.eps); });
-  }
-  c.gamma0 = rational_option("--gamma0", a.gamma0);
-  c.alpha = rational_option("--alpha", a.alpha);
-  c.beta = rational_option("--beta", a.beta);
-  if (a.delta0) c.delta0 = rational_option("--delta0", *a.delta0);
-  refine::resolve_delta0(c, m);
-  checked([&] { refine::validate(c); });
-  return c;
-}
-
 py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg, const py::object& eps_arg,
                        const std::string& mode, const py::object& gamma0, const py::object& alpha, const py::object& beta,
                        const py::object& delta0, std::uint64_t seed, int threads, std::size_t max_inserted,
@@ -336,7 +298,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
   check_threads(threads);
   if (mode != "practical" && mode != "paper")
     throw BindingInputError("mode: '" + mode + "' is not one of practical, paper");
-  RefineTexts texts;
+  refine::ConstantTexts texts;
   if (!eps_arg.is_none()) texts.eps = rational_text(eps_arg, "--eps");
   if (!delta0.is_none()) texts.delta0 = rational_text(delta0, "--delta0");
   texts.gamma0 = rational_text(gamma0, "--gamma0");
@@ -375,7 +337,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
   translating("", arrays, [&] {
     refine::RefineParameters params;
     params.mode = mode == "paper" ? refine::RefineMode::paper : refine::RefineMode::practical;
-    params.constants = constants_option(texts, m);
+    params.constants = refine::parse_constants(texts, m);
     params.seed = seed;
     params.threads = threads;
     params.max_inserted = max_inserted;

@@ -50,42 +50,6 @@ struct RefineArgs {
   std::size_t max_inserted = 0, max_rounds = 0;
 };
 
-// An exact rational option ("0.1", "1/10", "1e-1"); `name` is the option, for the message.
-refine::ExactParameter rational_option(const std::string& name, const std::string& text) {
-  try {
-    return refine::ExactParameter::parse(text);
-  } catch (const std::invalid_argument&) {
-    throw io::InputError(name, 0, "'" + text + "' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10");
-  }
-}
-
-// The constants as typed, parsed exactly (δ0 defaulted for intrinsic dimension m) and validated.
-// When several are wrong, the first reported is the one `delcert refine` has always reported: Γ0
-// is read first when it gives the default δ0, ε is checked as soon as it is read, the ranges of
-// the others after all of them are read.
-refine::Constants constants_option(const RefineArgs& a, int m) {
-  auto checked = [](auto&& validate) {
-    try {
-      validate();
-    } catch (const refine::ParameterError& e) {
-      throw io::InputError(e.option(), 0, e.reason());
-    }
-  };
-  refine::Constants c;
-  if (a.delta0.empty()) c.gamma0 = rational_option("--gamma0", a.gamma0);
-  if (!a.eps.empty()) {
-    c.eps = rational_option("--eps", a.eps);
-    checked([&] { refine::validate_eps(*c.eps); });
-  }
-  c.gamma0 = rational_option("--gamma0", a.gamma0);
-  c.alpha = rational_option("--alpha", a.alpha);
-  c.beta = rational_option("--beta", a.beta);
-  if (!a.delta0.empty()) c.delta0 = rational_option("--delta0", a.delta0);
-  refine::resolve_delta0(c, m);
-  checked([&] { refine::validate(c); });
-  return c;
-}
-
 int run_refine(const RefineArgs& a) {
   // Every output checked before any work (DIR itself may be created at the end).
   {
@@ -107,7 +71,11 @@ int run_refine(const RefineArgs& a) {
 
   refine::RefineParameters params;
   params.mode = a.mode == "paper" ? refine::RefineMode::paper : refine::RefineMode::practical;
-  params.constants = constants_option(a, m);
+  refine::ConstantTexts texts;
+  if (!a.eps.empty()) texts.eps = a.eps;
+  if (!a.delta0.empty()) texts.delta0 = a.delta0;
+  texts.gamma0 = a.gamma0, texts.alpha = a.alpha, texts.beta = a.beta;
+  params.constants = refine::parse_constants(texts, m);
   params.seed = a.seed;
   params.threads = a.threads;
   params.max_inserted = a.max_inserted;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "exact/polynomial.hpp"
+#include "io/input_error.hpp"
 
 namespace delcert::refine {
 
@@ -89,6 +90,37 @@ mpq_class decimal_above(double x) {
     q.canonicalize();
     if (q.get_d() > x) return q;
   }
+}
+
+ExactParameter parse_rational_option(const std::string& option, const std::string& text) {
+  try {
+    return ExactParameter::parse(text);
+  } catch (const std::invalid_argument&) {
+    throw io::InputError(option, 0, "'" + text + "' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10");
+  }
+}
+
+Constants parse_constants(const ConstantTexts& a, int m) {
+  auto checked = [](auto&& validate_part) {
+    try {
+      validate_part();
+    } catch (const ParameterError& e) {
+      throw io::InputError(e.option(), 0, e.reason());
+    }
+  };
+  Constants c;
+  if (!a.delta0) c.gamma0 = parse_rational_option("--gamma0", a.gamma0);
+  if (a.eps) {
+    c.eps = parse_rational_option("--eps", *a.eps);
+    checked([&] { validate_eps(*c.eps); });
+  }
+  c.gamma0 = parse_rational_option("--gamma0", a.gamma0);
+  c.alpha = parse_rational_option("--alpha", a.alpha);
+  c.beta = parse_rational_option("--beta", a.beta);
+  if (a.delta0) c.delta0 = parse_rational_option("--delta0", *a.delta0);
+  resolve_delta0(c, m);
+  checked([&] { validate(c); });
+  return c;
 }
 
 }  // namespace delcert::refine

@@ -75,6 +75,19 @@ mpq_class default_delta0(const mpq_class& gamma0, int m);
 // Sets δ0 to default_delta0(Γ0, m) when it is absent.
 void resolve_delta0(Constants& c, int m);
 
+// The constants as typed (command-line text, or the Python module's): an absent ε or δ0 was not given.
+struct ConstantTexts {
+  std::optional<std::string> eps, delta0;
+  std::string gamma0 = "0.1", alpha = "0.3", beta = "1.1";
+};
+// An exact rational option ("0.1", "1/10", "1e-1"); throws io::InputError naming `option` otherwise.
+ExactParameter parse_rational_option(const std::string& option, const std::string& text);
+// The constants parsed exactly (δ0 defaulted for intrinsic dimension m) and validated; throws
+// io::InputError naming the option (--eps, --gamma0, ...). When several are wrong, the first
+// reported is the one `delcert refine` has always reported: Γ0 is read first when it gives the
+// default δ0, ε is checked as soon as it is read, the ranges of the others after all are read.
+Constants parse_constants(const ConstantTexts& texts, int m);
+
 // The decimal with two significant digits just above x (x > 0): 0.4712 -> 0.48 (the smallest such
 // decimal whose double exceeds x). The derived ε.
 mpq_class decimal_above(double x);
