@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include "core/refine/parameters.hpp"
+#include "io/input_error.hpp"
 #include "io/spec.hpp"
 
 namespace delcert::app {
@@ -86,6 +88,33 @@ CLI::Validator thread_count() {
       "; give 0 (one thread per hardware thread) or a thread count from 1 to " + std::to_string(kMaxThreads);
   return CLI::Validator([give](std::string& input) { return check_whole(input, kMaxThreads, give); },
                         "0.." + std::to_string(kMaxThreads), "THREADS");
+}
+
+double eps_option(const std::string& text) {
+  const refine::ExactParameter eps = refine::parse_rational_option("--eps", text);
+  try {
+    refine::validate_eps(eps);
+  } catch (const refine::ParameterError& e) {
+    throw io::InputError(e.option(), 0, e.reason());
+  }
+  return eps.value.get_d();
+}
+
+void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options) {
+  const sampling::EpsNetEstimate e = sampling::estimate_eps_net(manifold, options);
+  const double cap = static_cast<double>(options.max_dense);
+  if (e.dense_points > cap) {
+    char dense[32], msg[400];
+    std::snprintf(dense, sizeof dense, std::isfinite(e.dense_points) ? "about %.3g" : "more than 1e308", e.dense_points);
+    std::snprintf(msg, sizeof msg,
+                  "%g is too small for this command: its eps-net needs a dense sample of %s points, more than the cap "
+                  "of %.3g; give eps >= %.2g",
+                  options.eps, dense, cap, e.eps_at_cap);
+    throw io::InputError("--eps", 0, msg);
+  }
+  if (e.dense_points > 1e6)
+    std::fprintf(stderr, "warning: eps %g: an eps-net of about %.3g points from a dense sample of about %.3g points; "
+                 "this takes a while\n", options.eps, e.net_points, e.dense_points);
 }
 
 }  // namespace delcert::app

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/manifold/on_manifold.hpp"
+#include "core/sampling/sampling.hpp"
 
 namespace delcert::app {
 
@@ -39,6 +40,15 @@ CLI::Validator positive_number();
 inline constexpr int kMaxThreads = 256;
 CLI::Validator thread_count();
 std::string threads_help();
+
+// --eps as `sample` and `refine` take it: a decimal or a fraction (refine::parse_rational_option),
+// > 0, with a positive finite double; returns that double. Throws io::InputError naming --eps.
+double eps_option(const std::string& text);
+// Before an eps-net is sampled (sample, refine without --points): refuses (io::InputError on
+// --eps) an eps whose net would need a dense sample beyond options.max_dense (the selection could
+// not give an eps-net, and would run for hours), naming the smallest eps that fits; warns on
+// stderr beyond 10^6 dense points. By sampling::estimate_eps_net (a pilot, seeded).
+void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options);
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);

@@ -14,27 +14,27 @@ namespace delcert::app {
 namespace {
 
 struct SampleArgs {
-  std::string manifold, out;
-  double eps = 0;
+  std::string manifold, out, eps;
   std::uint64_t seed = 1;
 };
 
 int run_sample(const SampleArgs& a) {
   manifold::Manifold manifold(io::read_spec(a.manifold));
   sampling::EpsNetOptions options;
-  options.eps = a.eps;
+  options.eps = eps_option(a.eps);
   options.seed = a.seed;
   io::check_output_path(a.out, "--out", {a.manifold});
+  check_eps_net_size(manifold, options);
   auto net = sampling::eps_net(manifold, options);
   manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
   io::write_points(a.out, net.points);
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), manifold.intrinsic_dimension(),
               manifold.ambient_dimension());
-  std::printf("eps                %s\n", io::format_double(a.eps).c_str());
+  std::printf("eps                %s\n", a.eps.c_str());
   std::printf("seed               %llu\n", static_cast<unsigned long long>(a.seed));
   std::printf("dense sample       %zu points\n", net.dense_size);
   std::printf("eps-net            %zu points -> %s\n", net.points.size(), a.out.c_str());
-  std::printf("min distance       %.6g  (eps-sparse: %s)\n", net.min_distance, net.min_distance > a.eps ? "yes" : "NO");
+  std::printf("min distance       %.6g  (eps-sparse: %s)\n", net.min_distance, net.min_distance > options.eps ? "yes" : "NO");
   // The farthest dense-sample point from the net is a point of M, so this is a LOWER bound on the
   // covering radius max_{x in M} d(x, P); the true value can be larger (a restricted Voronoi vertex
   // between dense-sample points), so it proves nothing about P being an eps-sample.
@@ -50,7 +50,7 @@ Command add_sample_command(CLI::App& app) {
   auto args = std::make_shared<SampleArgs>();
   auto* sub = app.add_subcommand("sample", "write an eps-net of M (farthest-point selection from a dense sample)");
   sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
-  sub->add_option("--eps", args->eps, "sparsity and sampling radius")->required()->check(positive_number());
+  sub->add_option("--eps", args->eps, "sparsity and sampling radius: a decimal or a fraction (0.1, 1/10, 1e-1), as refine --eps")->required();
   sub->add_option("--seed", args->seed, "random seed (same seed, same bytes)")
       ->capture_default_str()
       ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));

@@ -33,8 +33,8 @@ bool positive_double(const mpq_class& q) {
 
 // Why a positive q is no positive finite double: named limits, never the 300-digit numbers.
 std::string double_range_reason(const mpq_class& q) {
-  return q > 1 ? "must be at most 1.8e308 (the largest double): the refiner computes with doubles"
-               : "must be at least 4.9e-324 (the smallest positive double): the refiner computes with doubles";
+  return q > 1 ? "must be at most 1.8e308 (the largest double): delcert computes with doubles"
+               : "must be at least 4.9e-324 (the smallest positive double): delcert computes with doubles";
 }
 
 }  // namespace

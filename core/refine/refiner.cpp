@@ -48,6 +48,23 @@ const char* to_string(StopReason s) {
   return "?";
 }
 
+const char* advice(StopReason s) {
+  switch (s) {
+    case StopReason::converged: return "";
+    case StopReason::max_inserted:
+      return "the cap on inserted points was hit: raise --max-inserted (0 = 20 x input + 20000), or refine with a "
+             "larger --eps (fewer points)";
+    case StopReason::max_rounds:
+      return "the cap on rounds was hit: raise --max-rounds (0 = 2000)";
+    case StopReason::stalled:
+      return "the refinement stalled (a round inserted nothing, or stars stay open with no rule left to apply): try "
+             "another --seed, a smaller --gamma0 or a larger --eps; report.json says what was left pending";
+    case StopReason::time_limit:
+      return "the time limit was hit (benchmarks only): raise it";
+  }
+  return "";
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;

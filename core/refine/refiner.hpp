@@ -40,6 +40,8 @@ struct PerRule {
 // Why a run stopped; only `converged` is a success.
 enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit };
 const char* to_string(StopReason s);
+// What to do about a run that stopped for `s` (not converged): one sentence for the user.
+const char* advice(StopReason s);
 
 struct RefineProgress {
   std::size_t round = 0;

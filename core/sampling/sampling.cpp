@@ -1,6 +1,7 @@
 #include "core/sampling/sampling.hpp"
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include <limits>
 #include <numbers>
@@ -174,6 +175,28 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
   }
   r.min_distance = std::isfinite(min2) ? std::sqrt(min2) : 0;
   return r;
+}
+
+EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options) {
+  if (!(options.eps > 0) || !std::isfinite(options.eps)) throw std::invalid_argument("eps must be a positive number");
+  Random rng(options.seed);
+  io::PointSet pilot;
+  pilot.dimension = manifold.ambient_dimension();
+  sample_manifold(manifold, options.min_dense, rng, pilot);
+  const double m = manifold.intrinsic_dimension();
+  double eps = options.eps, cover = 0, scale = 1;
+  std::size_t k = 0;
+  for (int j = 0; j < 2000; ++j) {
+    k = farthest_point_selection(pilot, eps, &cover).size();
+    const double step = k == pilot.size() ? 256 : 2;  // every point selected: far too fine, jump
+    if (4 * k <= pilot.size() || !std::isfinite(eps * step)) break;
+    eps *= step, scale *= std::pow(step, m);
+  }
+  EpsNetEstimate e;
+  e.net_points = static_cast<double>(k) * scale;  // (may overflow to inf for an absurd eps)
+  e.eps_at_cap = eps * std::pow(options.oversampling * static_cast<double>(k) / static_cast<double>(options.max_dense), 1 / m);
+  e.dense_points = std::max(options.oversampling * e.net_points, static_cast<double>(options.min_dense));
+  return e;
 }
 
 }  // namespace delcert::sampling

@@ -37,6 +37,17 @@ struct EpsNetResult {
 // far as the dense sample can tell, an eps-sample. Same options, same bytes.
 EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options);
 
+// A pilot estimate of eps_net's sizes, before the run: farthest-point selection on a pilot of
+// `min_dense` random points (same seed), at eps or, where the pilot is too coarse to tell (more
+// than a quarter of it selected), at eps' = 2^j eps with the count scaled by (eps' / eps)^m.
+// Deterministic; an order of magnitude, for refusing or warning before a run that cannot end.
+struct EpsNetEstimate {
+  double net_points = 0;    // about this many net points
+  double dense_points = 0;  // and a dense sample of oversampling times that (before the caps)
+  double eps_at_cap = 0;    // about the eps whose dense sample is max_dense points
+};
+EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options);
+
 // Farthest-point selection on a given point set: indices of the selected points, in order,
 // starting from point 0, until the farthest remaining point is closer than eps. Also returns
 // the final covering radius of the selection over `dense`.

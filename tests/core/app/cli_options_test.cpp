@@ -58,8 +58,7 @@ constexpr const char* kSeedRange = "; give a seed from 0 to 18446744073709551615
 std::vector<Refused> refused_cases() {
   static const std::string s = kSample, refine = "refine --manifold builtin:sphere-2 --eps 0.5 --out @OUT@ ",
                            tangential = "tangential --manifold builtin:sphere-2 --points nowhere.txt --out @OUT@ ",
-                           threads = "; give 0 (one thread per hardware thread) or a thread count from 1 to 256",
-                           eps = "; give a number > 0, e.g. 0.25";
+                           threads = "; give 0 (one thread per hardware thread) or a thread count from 1 to 256";
   static const std::vector<std::string> owned = {
       // --seed: CLI11 alone read -1 as 2^64-1, 2^64 as 2^64-1 and 010 as 8.
       s + "--eps 0.5 --seed -1", "--seed: -1 is negative" + std::string(kSeedRange),
@@ -71,13 +70,21 @@ std::vector<Refused> refused_cases() {
       s + "--eps 0.5 --seed " + std::string(300, '9'),
       "--seed: 99999999999999999999... (300 characters) is above 18446744073709551615" + std::string(kSeedRange),
       refine + "--seed -1", "--seed: -1 is negative" + std::string(kSeedRange),
-      // --eps of sample: CLI::PositiveNumber printed DBL_MIN and DBL_MAX with all their digits.
-      s + "--eps -1", "--eps: -1 is not positive" + eps,
-      s + "--eps 0", "--eps: 0 is not positive" + eps,
-      s + "--eps 1e400", "--eps: 1e400 is too large (the largest double is 1.79769e+308)" + eps,
-      s + "--eps 1e-400", "--eps: 1e-400 is too small (the smallest normal double is 2.22507e-308)" + eps,
-      s + "--eps nan", "--eps: nan is not a number" + eps,
-      s + "--eps abc", "--eps: abc is not a number" + eps,
+      // --eps of sample: CLI::PositiveNumber printed DBL_MIN and DBL_MAX with all their digits. Now
+      // sample reads --eps as refine does (an exact decimal or fraction), with refine's messages.
+      s + "--eps -1", "--eps: must be positive",
+      s + "--eps 0", "--eps: must be positive",
+      s + "--eps 1e400", "--eps: must be at most 1.8e308 (the largest double): delcert computes with doubles",
+      s + "--eps 1e-400", "--eps: must be at least 4.9e-324 (the smallest positive double): delcert computes with doubles",
+      s + "--eps nan", "--eps: 'nan' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10",
+      s + "--eps abc", "--eps: 'abc' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10",
+      // An eps whose net would need more than the dense sample's cap: refused at once (it ran for hours).
+      s + "--eps 1e-300",
+      "--eps: 1e-300 is too small for this command: its eps-net needs a dense sample of more than 1e308 points, more "
+      "than the cap of 4e+06; give eps >= 0.0066",
+      "refine --manifold builtin:sphere-2 --out @OUT@ --eps 1e-3",
+      "--eps: 0.001 is too small for this command: its eps-net needs a dense sample of about 2.02e+08 points, more "
+      "than the cap of 4e+06; give eps >= 0.0071",
       // --threads: CLI::NonNegativeNumber printed DBL_MAX with all its digits.
       tangential + "--threads -1", "--threads: -1 is negative" + threads,
       tangential + "--threads 257", "--threads: 257 is above 256" + threads,
@@ -102,6 +109,17 @@ TEST(DelcertCli, RefineEpsBeyondDoubleNamesTheLimit) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--eps: must be at most 1.8e308 (the largest double)"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+// sample --eps takes refine's exact syntax: 1/4 and 0.25 are the same eps, the same bytes.
+TEST(DelcertCli, SampleEpsIsAFractionOrADecimal) {
+  test::TempDir dir("cli-sample-eps");
+  auto a = run(binary("delcert") + " sample --manifold builtin:sphere-2 --eps 1/4 --out " + dir.file("a.txt"));
+  auto b = run(binary("delcert") + " sample --manifold builtin:sphere-2 --eps 0.25 --out " + dir.file("b.txt"));
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  EXPECT_NE(a.output.find("eps                1/4\n"), std::string::npos) << a.output;
+  EXPECT_EQ(test::slurp(dir.file("a.txt")), test::slurp(dir.file("b.txt")));
 }
 
 // A seed is read in decimal: a leading zero is not octal.

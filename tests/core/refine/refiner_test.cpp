@@ -301,9 +301,9 @@ TEST(Parameters, ValidatedExactlyWithTheOptionsMessages) {
   c.eps = exact("-1");
   EXPECT_EQ(message(c), "--eps: must be positive");
   c.eps = exact("1e-400");  // positive, but no positive double: the algorithm cannot run on it
-  EXPECT_EQ(message(c), "--eps: must be at least 4.9e-324 (the smallest positive double): the refiner computes with doubles");
+  EXPECT_EQ(message(c), "--eps: must be at least 4.9e-324 (the smallest positive double): delcert computes with doubles");
   c.eps = exact("1e400");  // the message names the limit, not its 309 digits (issue 13 §5)
-  EXPECT_EQ(message(c), "--eps: must be at most 1.8e308 (the largest double): the refiner computes with doubles");
+  EXPECT_EQ(message(c), "--eps: must be at most 1.8e308 (the largest double): delcert computes with doubles");
   c.eps = exact("0.3");
   c.gamma0 = exact("1.00000000000000000001");
   EXPECT_EQ(message(c), "--gamma0: must lie in (0, 1]");
@@ -314,7 +314,7 @@ TEST(Parameters, ValidatedExactlyWithTheOptionsMessages) {
   c.beta = exact("0");
   EXPECT_EQ(message(c), "--beta: must be positive; the paper takes beta > 1");
   c.beta = exact("1e400");
-  EXPECT_EQ(message(c), "--beta: must be at most 1.8e308 (the largest double): the refiner computes with doubles");
+  EXPECT_EQ(message(c), "--beta: must be at most 1.8e308 (the largest double): delcert computes with doubles");
   c.beta = exact("1.1");
   resolve_delta0(c, 2);  // Γ0 = 1 gives δ0 = 1
   EXPECT_EQ(c.delta0->text, "1");

@@ -79,3 +79,30 @@ TEST(FarthestPoint, KnownAnswerOnALine) {
 
 }  // namespace
 }  // namespace delcert::sampling
+
+namespace delcert::sampling {
+namespace {
+
+// The pilot estimate of an eps-net's size (used to refuse an eps that cannot end) is within a
+// factor 2 of the net eps_net makes, where the pilot resolves eps and where it must extrapolate;
+// and it grows like eps^-m.
+TEST(EpsNetEstimate, WithinAFactorTwoOfTheNet) {
+  for (const char* name : {"sphere-2", "clifford-torus-2", "sphere-3"})
+    for (double eps : {0.3, 0.1}) {
+      manifold::Manifold manifold(io::read_spec(std::string("builtin:") + name));
+      EpsNetOptions o;
+      o.eps = eps;
+      const EpsNetEstimate e = estimate_eps_net(manifold, o);
+      const double actual = static_cast<double>(eps_net(manifold, o).points.size());
+      EXPECT_GT(e.net_points, actual / 2) << name << " eps " << eps;
+      EXPECT_LT(e.net_points, actual * 2) << name << " eps " << eps;
+      EXPECT_DOUBLE_EQ(e.dense_points, std::max(o.oversampling * e.net_points, static_cast<double>(o.min_dense)));
+    }
+  manifold::Manifold sphere(io::read_spec("builtin:sphere-2"));
+  EpsNetOptions tiny;
+  tiny.eps = 1e-300;
+  EXPECT_GT(estimate_eps_net(sphere, tiny).dense_points, 1e300);
+}
+
+}  // namespace
+}  // namespace delcert::sampling
