@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/manifold/on_manifold.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 
 namespace delcert::app {
 
@@ -39,6 +42,20 @@ CLI::Validator positive_number();
 inline constexpr int kMaxThreads = 256;
 CLI::Validator thread_count();
 std::string threads_help();
+
+// --mesh-out FILE.off|FILE.ply of `tangential` and `refine`: the complex as a surface mesh that any
+// mesh viewer (and delcert-certify) opens. check_mesh_out runs before any work: the extension
+// names the format, the path must be writable and no input; check_mesh_dimensions refuses
+// (exit 2) a manifold other than a surface in R^3 (m = 2, N = 3).
+void check_mesh_out(const std::string& path, const std::vector<std::string>& inputs,
+                    const std::vector<std::string>& other_outputs, bool directory_may_be_created = false);
+void check_mesh_dimensions(const std::string& path, int m, int N);
+// The mesh text: the points and the complex's triangles. A maximal simplex that is not a triangle
+// (an edge or a vertex left over by an inconsistent complex) is not a face of a surface mesh: it
+// is left out, and a warning on stderr says how many.
+std::string mesh_out_text(const std::string& path, const io::PointSet& points, const io::Complex& complex);
+inline constexpr const char* kMeshOutHelp =
+    "also write the complex as a surface mesh, OFF or PLY by the extension (.off, .ply); m = 2, N = 3 only (written atomically)";
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);
