@@ -58,6 +58,27 @@ bool all_digits(std::string_view t) {
   return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+// face[i]: simplices[i] (sorted) is a proper face of another listed simplex.
+std::vector<bool> faces_of_others(const std::vector<std::vector<int>>& sorted) {
+  std::map<int, std::vector<std::size_t>> containing;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    for (int v : sorted[i]) containing[v].push_back(i);
+  std::vector<bool> face(sorted.size(), false);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (sorted[i].empty()) continue;
+    int rarest = sorted[i][0];
+    for (int v : sorted[i])
+      if (containing[v].size() < containing[rarest].size()) rarest = v;
+    for (std::size_t j : containing[rarest])
+      if (sorted[j].size() > sorted[i].size() &&
+          std::includes(sorted[j].begin(), sorted[j].end(), sorted[i].begin(), sorted[i].end())) {
+        face[i] = true;
+        break;
+      }
+  }
+  return face;
+}
+
 // Which format, when none was given: a tag on the first line, then the mesh formats (first line
 // "ply", first word "solid", extension .obj/.ply/.stl), then headerless lines of integers (gudhi
 // when every line has the same length).
@@ -81,16 +102,28 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
                          "'; expected 'delcert-complex v1' or 'OFF' on the first line, an OBJ, PLY or STL mesh (by "
                          "content or extension), or a GUDHI simplex list (lines of vertex indices); name the format "
                          "with --complex-format (" + kComplexFormatNames + ")");
-  for (const Line& l : lines)
-    if (l.tokens.size() != lines[0].tokens.size())
-      throw InputError(file, l.number,
-                       "cannot tell the complex format: headerless lines of integers of different lengths (line " +
-                           std::to_string(lines[0].number) + " has " + std::to_string(lines[0].tokens.size()) +
-                           ", line " + std::to_string(l.number) + " has " + std::to_string(l.tokens.size()) +
-                           "). If it lists simplices and their faces (a GUDHI simplex-tree export), pass "
-                           "--complex-format gudhi (faces are dropped, maximal simplices kept); if its first line is "
-                           "a count header, it is another format: add its tag ('delcert-complex v1' or 'OFF') or pass "
-                           "--complex-format (" + kComplexFormatNames + ")");
+  // Lines of different lengths: a simplex-tree export lists every face of its simplices, so every
+  // shorter line is a face of a longer one. A line that is not (such as a count line "6 8" before
+  // triangles on vertices 0..5) makes the file ambiguous.
+  std::vector<std::vector<int>> simplices;
+  for (const Line& l : lines) {
+    std::vector<int> s;
+    for (auto t : l.tokens) s.push_back(static_cast<int>(std::min<long>(parse_count(t, file, l.number, "a vertex index"), std::numeric_limits<int>::max() - 1)));
+    std::sort(s.begin(), s.end());
+    simplices.push_back(std::move(s));
+  }
+  const std::vector<bool> face = faces_of_others(simplices);
+  std::size_t longest = 0;
+  for (const auto& s : simplices) longest = std::max(longest, s.size());
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (simplices[i].size() < longest && !face[i])
+      throw InputError(file, lines[i].number,
+                       "cannot tell the complex format: headerless lines of integers of different lengths, and this "
+                       "line (" + std::to_string(simplices[i].size()) + " numbers) is not a face of a longer line as "
+                       "in a GUDHI simplex list with faces. If the file lists simplices, pass --complex-format gudhi "
+                       "(faces are dropped, maximal simplices kept); if its first line is a count header, it is another "
+                       "format: add its tag ('delcert-complex v1' or 'OFF') or pass --complex-format (" +
+                           kComplexFormatNames + ")");
   return ComplexFormat::gudhi;
 }
 
@@ -124,26 +157,12 @@ void parse_gudhi(const std::vector<Line>& lines, const std::string& file, std::s
   }
   check_unique(all, all_lines, file);
   // A simplex is dropped when another listed simplex contains it.
-  std::vector<std::vector<int>> sorted(all.size());
-  std::vector<std::vector<std::size_t>> containing(nv);
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    sorted[i] = all[i];
-    std::sort(sorted[i].begin(), sorted[i].end());
-    for (int v : sorted[i]) containing[v].push_back(i);
-  }
+  std::vector<std::vector<int>> sorted = all;
+  for (auto& s : sorted) std::sort(s.begin(), s.end());
+  const std::vector<bool> face = faces_of_others(sorted);
   std::size_t dropped = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
-    int rarest = sorted[i][0];
-    for (int v : sorted[i])
-      if (containing[v].size() < containing[rarest].size()) rarest = v;
-    bool maximal = true;
-    for (std::size_t j : containing[rarest])
-      if (sorted[j].size() > sorted[i].size() &&
-          std::includes(sorted[j].begin(), sorted[j].end(), sorted[i].begin(), sorted[i].end())) {
-        maximal = false;
-        break;
-      }
-    if (!maximal) {
+    if (face[i]) {
       ++dropped;
       continue;
     }
