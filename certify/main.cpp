@@ -66,8 +66,8 @@ int main(int argc, char** argv) {
     o.kind = kind == "restricted"  ? certify::ComplexKind::restricted
              : kind == "intrinsic" ? certify::ComplexKind::intrinsic
                                    : certify::ComplexKind::tangential;
-  if (!kind.empty() && o.complex.empty()) {
-    std::cerr << "delcert-certify: --kind needs --complex (it says what the given complex is claimed to be)\n";
+  if ((!kind.empty() || o.complex_format != "auto") && o.complex.empty()) {
+    std::cerr << "delcert-certify: --kind and --complex-format need --complex (they describe the given complex)\n";
     return 2;
   }
   if (const std::string why = exact::directed_rounding_failure(); !why.empty()) {
