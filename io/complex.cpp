@@ -81,7 +81,7 @@ std::vector<bool> faces_of_others(const std::vector<std::vector<int>>& sorted) {
 
 // Which format, when none was given: a tag on the first line, then the mesh formats (first line
 // "ply", first word "solid", extension .obj/.ply/.stl), then headerless lines of integers (gudhi
-// when every line has the same length).
+// when every line has the same length or every shorter line is a face of a longer one).
 ComplexFormat detect_format(const std::string& text, const std::string& file, const std::vector<Line>& lines) {
   if (!lines.empty()) {
     const std::string_view tag = lines[0].tokens[0];
@@ -108,7 +108,9 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
   std::vector<std::vector<int>> simplices;
   for (const Line& l : lines) {
     std::vector<int> s;
-    for (auto t : l.tokens) s.push_back(static_cast<int>(std::min<long>(parse_count(t, file, l.number, "a vertex index"), std::numeric_limits<int>::max() - 1)));
+    for (auto t : l.tokens)
+      s.push_back(static_cast<int>(
+          std::min<long>(parse_count(t, file, l.number, "a vertex index"), std::numeric_limits<int>::max() - 1)));
     std::sort(s.begin(), s.end());
     simplices.push_back(std::move(s));
   }
