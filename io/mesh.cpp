@@ -64,13 +64,26 @@ struct PlyHeader {
   std::vector<std::pair<std::string, unsigned long long>> elements;  // in file order
 };
 
-// Reads the PLY header ourselves before CGAL does, to refuse counts the file cannot hold (a
-// reader must not reserve memory for a billion vertices announced by a 100-byte file) and to
-// know the lines of an ASCII file's faces.
+bool is_ply_scalar(const std::string& t) {
+  for (const char* k : {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8", "int16",
+                        "uint16", "int32", "uint32", "float32", "float64"})
+    if (t == k) return true;
+  return false;
+}
+
+// Reads and checks the PLY header before CGAL does. CGAL's reader trusts the header: a property
+// before any element is undefined behaviour in it (found by fuzzing), a list length of 32 bits
+// lets a file ask for gigabytes, and announced counts are not compared with the file's size. So
+// the header must be well formed here (keywords, types, a property after its element), list
+// lengths are 8 or 16 bits unsigned (uchar, uint8, ushort, uint16: what exporters write), and no
+// element count may exceed the file's size in bytes. Also gives the lines of an ASCII file's faces.
 PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
   PlyHeader h;
   long number = 0;
   std::size_t pos = 0;
+  auto bad = [&](const std::string& what) {
+    throw InputError(file, number, "malformed PLY header: " + what);
+  };
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -79,23 +92,48 @@ PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
     pos = end + 1;
     std::string key;
     line >> key;
-    if (key == "format") {
-      std::string f;
-      line >> f;
+    if (number == 1) {
+      if (key != "ply") bad("the first line must be 'ply'");
+      continue;
+    }
+    if (number == 2) {
+      std::string f, version;
+      if (key != "format" || !(line >> f >> version) ||
+          (f != "ascii" && f != "binary_little_endian" && f != "binary_big_endian"))
+        bad("the second line must be 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       h.ascii = f == "ascii";
-    } else if (key == "element") {
+      continue;
+    }
+    if (key == "comment" || key == "obj_info") continue;
+    if (key == "element") {
       std::string what;
       unsigned long long count = 0;
-      if (!(line >> what >> count))
-        throw InputError(file, number, "malformed PLY header line; expected 'element NAME COUNT'");
+      if (!(line >> what >> count)) bad("expected 'element NAME COUNT'");
       if (count > text.size())
         throw InputError(file, number,
                          "the PLY header announces " + std::to_string(count) + " " + what + " elements but the file has only " +
                              std::to_string(text.size()) + " bytes");
       h.elements.emplace_back(what, count);
+    } else if (key == "property") {
+      if (h.elements.empty()) bad("a property before any element");
+      std::string type, name;
+      if (!(line >> type)) bad("expected 'property TYPE NAME' or 'property list SIZE_TYPE INDEX_TYPE NAME'");
+      if (type == "list") {
+        std::string size_type, index_type;
+        if (!(line >> size_type >> index_type >> name)) bad("expected 'property list SIZE_TYPE INDEX_TYPE NAME'");
+        if (size_type != "uchar" && size_type != "uint8" && size_type != "ushort" && size_type != "uint16")
+          bad("list length type '" + size_type +
+              "': delcert reads lists whose lengths are uchar, uint8, ushort or uint16 (as exporters write them)");
+        if (!is_ply_scalar(index_type)) bad("unknown list index type '" + index_type + "'");
+      } else {
+        if (!is_ply_scalar(type)) bad("unknown property type '" + type + "'");
+        if (!(line >> name)) bad("expected 'property TYPE NAME'");
+      }
     } else if (key == "end_header") {
       h.end_header_line = number;
       return h;
+    } else {
+      bad("unknown keyword '" + key + "'");
     }
   }
   throw InputError(file, 0, "PLY header without 'end_header'");
