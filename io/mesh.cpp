@@ -62,6 +62,7 @@ struct PlyHeader {
   bool ascii = false;
   long end_header_line = 0;
   std::vector<std::pair<std::string, unsigned long long>> elements;  // in file order
+  std::vector<std::pair<std::string, std::string>> vertex_properties;  // (name, type) of the vertex element
 };
 
 bool is_ply_scalar(const std::string& t) {
@@ -75,8 +76,8 @@ bool is_ply_scalar(const std::string& t) {
 // before any element is undefined behaviour in it (found by fuzzing), a list length of 32 bits
 // lets a file ask for gigabytes, and announced counts are not compared with the file's size. So
 // the header must be well formed here (keywords, types, a property after its element), list
-// lengths are 8 or 16 bits unsigned (uchar, uint8, ushort, uint16: what exporters write), and no
-// element count may exceed the file's size in bytes. Also gives the lines of an ASCII file's faces.
+// lengths are 8 or 16 bits unsigned (uchar, uint8, ushort, uint16: what exporters write), vertex
+// coordinates x, y, z float or double, and no element count may exceed the file's size in bytes. Also gives the lines of an ASCII file's faces.
 PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
   PlyHeader h;
   long number = 0;
@@ -129,8 +130,19 @@ PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
         if (!is_ply_scalar(type)) bad("unknown property type '" + type + "'");
         if (!(line >> name)) bad("expected 'property TYPE NAME'");
       }
+      if (h.elements.back().first == "vertex") h.vertex_properties.emplace_back(name, type);
     } else if (key == "end_header") {
       h.end_header_line = number;
+      // CGAL reads x, y, z as float or double whatever they are declared (undefined behaviour
+      // for any other type, found by fuzzing).
+      for (const char* c : {"x", "y", "z"}) {
+        auto it = std::find_if(h.vertex_properties.begin(), h.vertex_properties.end(),
+                               [&](const auto& p) { return p.first == c; });
+        if (it == h.vertex_properties.end()) bad(std::string("the vertex element has no property ") + c);
+        if (it->second != "float" && it->second != "double" && it->second != "float32" && it->second != "float64")
+          bad(std::string("vertex coordinate ") + c + " is of type '" + it->second +
+              "'; delcert reads coordinates of type float or double");
+      }
       return h;
     } else {
       bad("unknown keyword '" + key + "'");
