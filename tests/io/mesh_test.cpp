@@ -179,5 +179,26 @@ TEST(Mesh, ReaderFailuresAndEmptyMeshes) {
       "simplex 1 listed twice");
 }
 
+// CGAL's PLY reader trusts the header (undefined behaviour on the first two, found by fuzzing;
+// gigabytes asked for by the third): io/mesh.cpp checks it first.
+TEST(Mesh, PlyHeadersAreCheckedBeforeCgalReadsThem) {
+  const std::string tail = "element face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  test::expect_input_error([](const std::string& p) {
+    parse_complex("ply\nformat ascii 1.0\nproperty double x\nelement vertex 0\nend_header\n", p);
+  }, "m.ply", 3, "a property before any element");
+  test::expect_input_error([&](const std::string& p) {
+    parse_complex("ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\nproperty uint16 y\nproperty double z\n" + tail, p);
+  }, "m.ply", 9, "vertex coordinate y is of type 'uint16'");
+  test::expect_input_error([](const std::string& p) {
+    parse_complex("ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\nproperty double y\nproperty double z\n"
+                  "element face 0\nproperty list int int vertex_indices\nend_header\n", p);
+  }, "m.ply", 8, "list length type 'int'");
+  test::expect_input_error([&](const std::string& p) {
+    parse_complex("ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\nproperty double y\n" + tail, p);
+  }, "m.ply", 8, "no property z");
+  test::expect_input_error([&](const std::string& p) { parse_complex("ply\nformat text 1.0\n" + tail, p); }, "m.ply", 2,
+                           "the second line must be 'format");
+}
+
 }  // namespace
 }  // namespace delcert::io
