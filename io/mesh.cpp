@@ -75,7 +75,8 @@ bool is_ply_scalar(const std::string& t) {
 // Reads and checks the PLY header before CGAL does. CGAL's reader trusts the header: a property
 // before any element is undefined behaviour in it (found by fuzzing), a list length of 32 bits
 // lets a file ask for gigabytes, and announced counts are not compared with the file's size. So
-// the header must be well formed here (keywords, types, a property after its element), list
+// the header must be well formed here (keywords, types, a property after its element, each
+// element once), list
 // lengths are 8 or 16 bits unsigned (uchar, uint8, ushort, uint16: what exporters write), vertex
 // coordinates x, y, z float or double, and no element count may exceed the file's size in bytes. Also gives the lines of an ASCII file's faces.
 PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
@@ -114,6 +115,8 @@ PlyHeader scan_ply_header(std::string_view text, const std::string& file) {
         throw InputError(file, number,
                          "the PLY header announces " + std::to_string(count) + " " + what + " elements but the file has only " +
                              std::to_string(text.size()) + " bytes");
+      for (const auto& e : h.elements)
+        if (e.first == what) bad("a second element '" + what + "'");
       h.elements.emplace_back(what, count);
     } else if (key == "property") {
       if (h.elements.empty()) bad("a property before any element");

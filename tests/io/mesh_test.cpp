@@ -196,6 +196,10 @@ TEST(Mesh, PlyHeadersAreCheckedBeforeCgalReadsThem) {
   test::expect_input_error([&](const std::string& p) {
     parse_complex("ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\nproperty double y\n" + tail, p);
   }, "m.ply", 8, "no property z");
+  test::expect_input_error([&](const std::string& p) {
+    parse_complex("ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\nproperty double y\nproperty double z\n"
+                  "element vertex 0\nproperty uint32 x\n" + tail, p);
+  }, "m.ply", 7, "a second element 'vertex'");
   test::expect_input_error([&](const std::string& p) { parse_complex("ply\nformat text 1.0\n" + tail, p); }, "m.ply", 2,
                            "the second line must be 'format");
 }
