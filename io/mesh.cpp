@@ -11,8 +11,6 @@
 #include <array>
 #include <cctype>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -182,6 +180,7 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   std::vector<long> face_lines;  // the line of each face, where known (ASCII); else empty
+  std::size_t stl_copies = 0;    // vertex copies CGAL's STL reader merged
   bool ok = false;
   std::istringstream in(text, std::ios::in | std::ios::binary);
   const auto quiet = CGAL::parameters::verbose(false);
@@ -203,6 +202,8 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
         std::vector<std::array<std::size_t, 3>> triangles;
         ok = CGAL::IO::read_STL(in, points, triangles, quiet);
         for (const auto& t : triangles) faces.push_back({t[0], t[1], t[2]});
+        // CGAL's STL reader has already merged the 3 corners stored per facet into shared vertices.
+        if (3 * faces.size() > points.size()) stl_copies = 3 * faces.size() - points.size();
         if (first_word(text) == "solid") face_lines = lines_starting_with(text, "facet");
         break;
       }
@@ -222,16 +223,18 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
     throw InputError(file, 0, std::string("the ") + to_string(format) + " file has no faces; a surface mesh of triangles is expected");
   Mesh mesh;
   mesh.points.dimension = 3;
-  // Merge vertices with bit-identical coordinates, in order of first appearance.
-  std::map<std::array<std::uint64_t, 3>, int> index_of;
+  mesh.merged_vertices = stl_copies;
+  // Merge vertices with identical coordinates, in order of first appearance. Identical as numbers
+  // (0 and -0 are one vertex, as for the points reader's duplicate test and CGAL's STL reader):
+  // the certifier reads every double as the rational it represents.
+  std::map<std::array<double, 3>, int> index_of;
   std::vector<int> new_index(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<double, 3> c{points[i].x(), points[i].y(), points[i].z()};
     for (double x : c)
       if (!std::isfinite(x))
         throw InputError(file, 0, "vertex " + std::to_string(i) + " has a coordinate that is not a finite number");
-    std::array<std::uint64_t, 3> key{};
-    for (int k = 0; k < 3; ++k) std::memcpy(&key[k], &c[k], sizeof(double));
+    const std::array<double, 3>& key = c;
     auto [it, inserted] = index_of.emplace(key, static_cast<int>(mesh.points.size()));
     if (inserted) mesh.points.push_back(c);
     else ++mesh.merged_vertices;

@@ -4,7 +4,7 @@
 // certifier hashes. CGAL is included in mesh.cpp only.
 //
 // A mesh is a set of points in R^3 and triangles on them. Vertices with identical coordinates
-// are merged (STL repeats every vertex in each facet; CGAL's STL reader merges them too), so the
+// (equal as numbers: 0 and -0 are one vertex) are merged (STL repeats every vertex in each facet; CGAL's STL reader merges them too), so the
 // triangles share vertices and form a simplicial complex. Faces that are not triangles are
 // refused: a quad is not a simplex, and a certifier must not invent a triangulation of it.
 //

@@ -75,7 +75,9 @@ TEST(Mesh, StlVerticesAreShared) {
   EXPECT_EQ(m.points.size(), 6u);
   EXPECT_EQ(m.triangles.simplices.size(), 8u);
   const ComplexFile f = parse_complex(text, "oct.stl");
-  EXPECT_TRUE(f.note.empty() || f.note.find("merged") != std::string::npos) << f.note;
+  EXPECT_EQ(m.merged_vertices, 18u);  // 24 corners, 6 vertices
+  EXPECT_EQ(f.note, "18 vertex copies with identical coordinates merged (6 distinct vertices)");
+  EXPECT_EQ(parse_complex(read_file(fixture("meshes/octahedron-binary.stl")), "b.stl").note, f.note);
 }
 
 TEST(Mesh, DetectionByContentThenExtension) {
