@@ -102,7 +102,8 @@ struct Inputs {
   io::PointSet points;
   std::vector<long> point_lines;     // line of each point in the points file
   std::optional<io::Complex> given;  // the complex to verify; none in audit mode
-  bool given_is_off = false;         // it came from an OFF file (a surface mesher's output)
+  bool given_is_off = false;         // it came from a mesh file: OFF, OBJ, PLY, STL (a surface mesher's output)
+  json complex_read;                 // the format read and what the reader changed (merged vertices, dropped faces)
   io::Claims claims;
 };
 
@@ -110,6 +111,7 @@ Inputs read_inputs(const CertifyOptions& o) {
   Inputs in;
   in.spec_text = io::read_spec_text(o.manifold);
   in.spec = io::parse_spec(in.spec_text, o.manifold);
+  if (!o.residual_tolerance.empty()) in.spec.residual_tolerance = io::parse_residual_tolerance(o.residual_tolerance);
   const int N = in.spec.ambient_dimension, m = in.spec.intrinsic_dimension;
   if (m > exact::kMaxTangentDimension)
     throw io::InputError(o.manifold, 0, "intrinsic dimension " + std::to_string(m) + " is above the supported maximum " +
@@ -124,7 +126,9 @@ Inputs read_inputs(const CertifyOptions& o) {
                                           "-manifold needs at least m + 2 = " + std::to_string(m + 2));
   if (!o.complex.empty()) {
     in.complex_text = io::read_file(o.complex);
-    io::ComplexFile cf = io::parse_complex(in.complex_text, o.complex);
+    io::ComplexFile cf = io::parse_complex(
+        in.complex_text, o.complex, {io::complex_format_from_name(o.complex_format).value_or(io::ComplexFormat::automatic), P.size()});
+    in.complex_read = {{"format", io::to_string(cf.format)}, {"note", cf.note}};
     if (cf.complex.num_vertices != P.size())
       throw io::InputError(o.complex, cf.counts_line,
                            "the complex has " + std::to_string(cf.complex.num_vertices) + " vertices but " + o.points +
@@ -152,8 +156,10 @@ json inputs_json(const Inputs& in, const CertifyOptions& o) {
                    {"intrinsic_dimension", in.spec.intrinsic_dimension}, {"ambient_dimension", in.spec.ambient_dimension}};
   j["points"] = {{"path", o.points}, {"sha256", detail::Sha256::hex(in.points_text)}, {"count", in.points.size()}};
   j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", detail::Sha256::hex(in.complex_text)},
-                                 {"simplices", in.given->simplices.size()}}
+                                 {"simplices", in.given->simplices.size()}, {"read", in.complex_read}}
                           : json(nullptr);
+  j["residual_tolerance"] = {{"value", exact::rational_to_string(in.spec.residual_tolerance)},
+                             {"source", o.residual_tolerance.empty() ? "the manifold spec" : "--residual-tolerance"}};
   j["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", detail::Sha256::hex(in.claims_text)}};
   return j;
 }

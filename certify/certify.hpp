@@ -37,6 +37,8 @@ struct CertifyOptions {
   std::string points;
   std::string complex;   // empty: audit the point set (compute Del_TM)
   std::string claims;    // empty: no claims
+  std::string complex_format = "auto";  // io::complex_format_from_name: auto, delcert, off, obj, ply, stl, gudhi
+  std::string residual_tolerance;       // empty: the spec's; else replaces it (io::parse_residual_tolerance)
   ComplexKind kind = ComplexKind::automatic;
   // Checks 11-15 are not computed (their entries say so, verdict REPORT): the certificate is then
   // about Del_TM(P) only. Not allowed with kind restricted or intrinsic.

@@ -1,6 +1,7 @@
 // delcert-certify: the independent checker (docs/design.md §1, §5, §9).
 //
 //   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted|intrinsic]
+//                   [--complex-format auto|delcert|off|obj|ply|stl|gudhi] [--residual-tolerance T]
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
 //                   [--skip-restricted] [--report REPORT.html]
 //
@@ -31,14 +32,19 @@ int main(int argc, char** argv) {
   std::string builtins;
   for (const auto& n : io::builtin_spec_names()) builtins += (builtins.empty() ? "" : ", ") + n;
   app.add_option("--manifold", o.manifold, "manifold spec: a JSON file or builtin:NAME (" + builtins + ")")->required();
-  app.add_option("--points", o.points, "point set (delcert-points v1, OFF, nOFF)")->required();
+  app.add_option("--points", o.points, "point set (delcert-points v1, OFF, nOFF, or an OBJ/PLY/STL mesh's vertices)")->required();
   app.add_option("--complex", o.complex,
-                 "complex to verify (delcert-complex v1, OFF); without it the tangential complex of the points is "
+                 "complex to verify (delcert-complex v1, OFF, OBJ, PLY, STL, GUDHI simplex list); without it the tangential complex of the points is "
                  "computed and audited");
+  app.add_option("--complex-format", o.complex_format, "format of --complex (default auto: detected; docs/formats.md)")
+      ->check(CLI::IsMember({"auto", "delcert", "off", "obj", "ply", "stl", "gudhi"}));
+  app.add_option("--residual-tolerance", o.residual_tolerance,
+                 "largest |F_i(p)| accepted for an input point, replacing the spec's residual_tolerance (a positive "
+                 "decimal or fraction, read exactly; recorded in the certificate)");
   std::string kind;
   app.add_option("--kind", kind,
                  "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files), "
-                 "restricted (Del_RM, the default for OFF: a surface mesher's output) or intrinsic (Del_M)")
+                 "restricted (Del_RM, the default for OFF/OBJ/PLY/STL: a surface mesher's output) or intrinsic (Del_M)")
       ->check(CLI::IsMember({"tangential", "restricted", "intrinsic"}));
   app.add_option("--claims", o.claims,
                  "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
@@ -65,8 +71,8 @@ int main(int argc, char** argv) {
     o.kind = kind == "restricted"  ? certify::ComplexKind::restricted
              : kind == "intrinsic" ? certify::ComplexKind::intrinsic
                                    : certify::ComplexKind::tangential;
-  if (!kind.empty() && o.complex.empty()) {
-    std::cerr << "delcert-certify: --kind needs --complex (it says what the given complex is claimed to be)\n";
+  if ((!kind.empty() || o.complex_format != "auto") && o.complex.empty()) {
+    std::cerr << "delcert-certify: --kind and --complex-format need --complex (they describe the given complex)\n";
     return 2;
   }
   if (const std::string why = exact::directed_rounding_failure(); !why.empty()) {

@@ -89,7 +89,7 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
                                  "(p)| is about " + num(f.get_d()) + " > residual_tolerance " +
                                  exact::rational_to_string(spec.residual_tolerance) +
                                  " (exactly), and the tangential Delaunay complex needs T_p M; project the point onto "
-                                 "M, raise residual_tolerance in the spec, or, for a complex claimed to be restricted "
+                                 "M, raise residual_tolerance in the spec (or pass --residual-tolerance), or, for a complex claimed to be restricted "
                                  "Delaunay (a mesher's output), pass it with --complex and --kind restricted");
       if (f > worst[idx]) worst[idx] = f;
     }

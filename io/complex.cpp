@@ -1,6 +1,7 @@
 #include "io/complex.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/detail/text_lines.hpp"
+#include "io/mesh.hpp"
 
 namespace delcert::io {
 
@@ -46,19 +48,195 @@ void check_unique(const std::vector<std::vector<int>>& simplices, const std::vec
     std::sort(key.begin(), key.end());
     auto [it, inserted] = seen.emplace(key, line_of[i]);
     if (!inserted)
-      throw InputError(file, line_of[i], "simplex listed twice (first on line " + std::to_string(it->second) + ")");
+      throw InputError(file, line_of[i],
+                       line_of[i] > 0 ? "simplex listed twice (first on line " + std::to_string(it->second) + ")"
+                                      : "simplex " + std::to_string(i) + " listed twice (the same vertices as an earlier one)");
   }
+}
+
+bool all_digits(std::string_view t) {
+  return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// face[i]: simplices[i] (sorted) is a proper face of another listed simplex.
+std::vector<bool> faces_of_others(const std::vector<std::vector<int>>& sorted) {
+  std::map<int, std::vector<std::size_t>> containing;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    for (int v : sorted[i]) containing[v].push_back(i);
+  std::vector<bool> face(sorted.size(), false);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (sorted[i].empty()) continue;
+    int rarest = sorted[i][0];
+    for (int v : sorted[i])
+      if (containing[v].size() < containing[rarest].size()) rarest = v;
+    for (std::size_t j : containing[rarest])
+      if (sorted[j].size() > sorted[i].size() &&
+          std::includes(sorted[j].begin(), sorted[j].end(), sorted[i].begin(), sorted[i].end())) {
+        face[i] = true;
+        break;
+      }
+  }
+  return face;
+}
+
+// Which format, when none was given: a tag on the first line, then the mesh formats (first line
+// "ply", first word "solid", extension .obj/.ply/.stl), then headerless lines of integers (gudhi
+// when every line has the same length or every shorter line is a face of a longer one).
+ComplexFormat detect_format(const std::string& text, const std::string& file, const std::vector<Line>& lines) {
+  if (!lines.empty()) {
+    const std::string_view tag = lines[0].tokens[0];
+    if (tag == "delcert-complex") return ComplexFormat::delcert;
+    if (tag == "OFF") return ComplexFormat::off;
+  }
+  if (auto mf = detect_mesh_format(text, file))
+    return *mf == MeshFormat::obj ? ComplexFormat::obj : *mf == MeshFormat::ply ? ComplexFormat::ply : ComplexFormat::stl;
+  if (lines.empty())
+    throw InputError(file, 0, "empty file; expected a 'delcert-complex v1' or 'OFF' header, an OBJ/PLY/STL mesh or a "
+                              "GUDHI simplex list");
+  bool integers = true;
+  for (const Line& l : lines)
+    for (auto t : l.tokens) integers = integers && all_digits(t);
+  if (!integers)
+    throw InputError(file, lines[0].number,
+                     "unknown complex format '" + std::string(lines[0].tokens[0]) +
+                         "'; expected 'delcert-complex v1' or 'OFF' on the first line, an OBJ, PLY or STL mesh (by "
+                         "content or extension), or a GUDHI simplex list (lines of vertex indices); name the format "
+                         "with --complex-format (" + kComplexFormatNames + ")");
+  // Lines of different lengths: a simplex-tree export lists every face of its simplices, so every
+  // shorter line is a face of a longer one. A line that is not (such as a count line "6 8" before
+  // triangles on vertices 0..5) makes the file ambiguous.
+  std::vector<std::vector<int>> simplices;
+  for (const Line& l : lines) {
+    std::vector<int> s;
+    for (auto t : l.tokens)
+      s.push_back(static_cast<int>(
+          std::min<long>(parse_count(t, file, l.number, "a vertex index"), std::numeric_limits<int>::max() - 1)));
+    std::sort(s.begin(), s.end());
+    simplices.push_back(std::move(s));
+  }
+  const std::vector<bool> face = faces_of_others(simplices);
+  std::size_t longest = 0;
+  for (const auto& s : simplices) longest = std::max(longest, s.size());
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (simplices[i].size() < longest && !face[i])
+      throw InputError(file, lines[i].number,
+                       "cannot tell the complex format: headerless lines of integers of different lengths, and this "
+                       "line (" + std::to_string(simplices[i].size()) + " numbers) is not a face of a longer line as "
+                       "in a GUDHI simplex list with faces. If the file lists simplices, pass --complex-format gudhi "
+                       "(faces are dropped, maximal simplices kept); if its first line is a count header, it is another "
+                       "format: add its tag ('delcert-complex v1' or 'OFF') or pass --complex-format (" +
+                           kComplexFormatNames + ")");
+  return ComplexFormat::gudhi;
+}
+
+// GUDHI simplex lists: every line a simplex; the maximal simplices are kept.
+void parse_gudhi(const std::vector<Line>& lines, const std::string& file, std::size_t num_vertices, ComplexFile& out,
+                 std::vector<long>& line_of) {
+  if (lines.empty()) throw InputError(file, 0, "empty GUDHI simplex list; expected one simplex per line");
+  std::size_t nv = num_vertices;
+  if (nv == 0) {
+    long largest = -1;
+    for (const Line& l : lines)
+      for (auto t : l.tokens) {
+        if (!all_digits(t)) break;  // reported below, with its line
+        largest = std::max(largest, parse_count(t, file, l.number, "a vertex index"));
+      }
+    if (largest >= std::numeric_limits<int>::max())
+      throw InputError(file, 0, "vertex index " + std::to_string(largest) + " is too large");
+    nv = static_cast<std::size_t>(largest + 1);
+  }
+  std::vector<std::vector<int>> all;
+  std::vector<long> all_lines;
+  for (const Line& l : lines) {
+    for (auto t : l.tokens)
+      if (!all_digits(t))
+        throw InputError(file, l.number,
+                         "expected a vertex index (a non-negative integer), found '" + std::string(t) +
+                             "'; a GUDHI simplex list has vertex indices only: write the simplices without their "
+                             "filtration values");
+    all.push_back(parse_simplex(l.tokens, 0, nv, file, l.number));
+    all_lines.push_back(l.number);
+  }
+  check_unique(all, all_lines, file);
+  // A simplex is dropped when another listed simplex contains it.
+  std::vector<std::vector<int>> sorted = all;
+  for (auto& s : sorted) std::sort(s.begin(), s.end());
+  const std::vector<bool> face = faces_of_others(sorted);
+  std::size_t dropped = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (face[i]) {
+      ++dropped;
+      continue;
+    }
+    out.complex.simplices.push_back(all[i]);
+    line_of.push_back(all_lines[i]);
+  }
+  out.complex.num_vertices = nv;
+  if (dropped)
+    out.note = "GUDHI simplex list: " + std::to_string(all.size()) + " simplices read, " + std::to_string(dropped) +
+               " faces of other listed simplices dropped, " + std::to_string(out.complex.simplices.size()) +
+               " maximal simplices kept";
 }
 
 }  // namespace
 
-ComplexFile parse_complex(const std::string& text, const std::string& file) {
-  auto lines = detail::split_lines(text);
+std::optional<ComplexFormat> complex_format_from_name(const std::string& name) {
+  for (ComplexFormat f : {ComplexFormat::automatic, ComplexFormat::delcert, ComplexFormat::off, ComplexFormat::obj,
+                          ComplexFormat::ply, ComplexFormat::stl, ComplexFormat::gudhi})
+    if (name == to_string(f)) return f;
+  return std::nullopt;
+}
+
+const char* to_string(ComplexFormat f) {
+  switch (f) {
+    case ComplexFormat::automatic: return "auto";
+    case ComplexFormat::delcert: return "delcert";
+    case ComplexFormat::off: return "off";
+    case ComplexFormat::obj: return "obj";
+    case ComplexFormat::ply: return "ply";
+    case ComplexFormat::stl: return "stl";
+    case ComplexFormat::gudhi: return "gudhi";
+  }
+  return "?";
+}
+
+ComplexFile parse_complex(const std::string& text, const std::string& file, const ComplexReadOptions& options) {
+  ComplexFile out;
+  std::vector<long> line_of;
+  const bool binary_mesh = options.format == ComplexFormat::ply || options.format == ComplexFormat::stl;
+  // A binary mesh is not split into lines (its bytes are not text).
+  const std::vector<Line> lines = binary_mesh ? std::vector<Line>{} : detail::split_lines(text);
+  ComplexFormat format = options.format;
+  if (format == ComplexFormat::automatic)
+    format = detect_format(text, file, detect_mesh_format(text, file) ? std::vector<Line>{} : lines);
+  out.format = format;
+  if (format == ComplexFormat::obj || format == ComplexFormat::ply || format == ComplexFormat::stl) {
+    Mesh mesh = parse_mesh(text, file,
+                           format == ComplexFormat::obj   ? MeshFormat::obj
+                           : format == ComplexFormat::ply ? MeshFormat::ply
+                                                          : MeshFormat::stl);
+    out.complex = std::move(mesh.triangles);
+    out.embedded_point_lines.assign(mesh.points.size(), 0);
+    out.embedded_points = std::move(mesh.points);
+    line_of.assign(out.complex.simplices.size(), 0);
+    if (mesh.merged_vertices)
+      out.note = std::to_string(mesh.merged_vertices) + " vertex copies with identical coordinates merged (" +
+                 std::to_string(out.embedded_points->size()) + " distinct vertices)";
+    check_unique(out.complex.simplices, line_of, file);
+    return out;
+  }
+  if (format == ComplexFormat::gudhi) {
+    parse_gudhi(lines, file, options.num_vertices, out, line_of);
+    check_unique(out.complex.simplices, line_of, file);
+    return out;
+  }
   if (lines.empty()) throw InputError(file, 0, "empty file; expected a 'delcert-complex v1' or 'OFF' header");
   const Line& head = lines[0];
   std::string tag(head.tokens[0]);
-  ComplexFile out;
-  std::vector<long> line_of;
+  if (format == ComplexFormat::delcert && tag != "delcert-complex")
+    throw InputError(file, head.number, "--complex-format delcert: expected the first line 'delcert-complex v1', found '" + tag + "'");
+  if (format == ComplexFormat::off && tag != "OFF")
+    throw InputError(file, head.number, "--complex-format off: expected the first line 'OFF', found '" + tag + "'");
   if (tag == "delcert-complex") {
     if (head.tokens.size() != 2 || head.tokens[1] != "v1")
       throw InputError(file, head.number, "unsupported complex format version; this reader knows 'delcert-complex v1'");
@@ -116,7 +294,9 @@ ComplexFile parse_complex(const std::string& text, const std::string& file) {
   return out;
 }
 
-ComplexFile read_complex(const std::string& path) { return parse_complex(read_file(path), path); }
+ComplexFile read_complex(const std::string& path, const ComplexReadOptions& options) {
+  return parse_complex(read_file(path), path, options);
+}
 
 std::string format_complex(const Complex& c) {
   std::string out = "delcert-complex v1\n" + std::to_string(c.num_vertices) + " " + std::to_string(c.simplices.size()) + "\n";

@@ -9,6 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/detail/text_lines.hpp"
+#include "io/mesh.hpp"
 
 namespace delcert::io {
 
@@ -60,6 +61,16 @@ void check_duplicates(const PointSet& ps, const std::vector<long>& line_of_point
 }  // namespace
 
 PointsFile parse_points_file(const std::string& text, const std::string& file, const PointReadOptions& options) {
+  if (auto mesh_format = detect_mesh_format(text, file)) {
+    // The vertices of an OBJ, PLY or STL mesh (identical coordinates merged), as the complex reader reads them.
+    PointsFile out;
+    out.points = parse_mesh(text, file, *mesh_format).points;
+    out.lines.assign(out.points.size(), 0);
+    if (options.expected_dimension && options.expected_dimension != 3)
+      throw InputError(file, 0, std::string("a ") + to_string(*mesh_format) + " mesh has points in R^3 but the manifold lives in R^" +
+                                    std::to_string(options.expected_dimension));
+    return out;
+  }
   auto lines = detail::split_lines(text);
   if (lines.empty()) throw InputError(file, 0, "empty file; expected a 'delcert-points v1', 'OFF' or 'nOFF' header");
   const Line& head = lines[0];
@@ -109,7 +120,7 @@ PointsFile parse_points_file(const std::string& text, const std::string& file, c
     read_coordinate_lines(lines, next, nv, ps.dimension, file, ps, line_of_point);
   } else {
     throw InputError(file, head.number, "unknown points format '" + tag +
-                                            "'; expected a first line 'delcert-points v1', 'OFF' or 'nOFF'");
+                                            "'; expected a first line 'delcert-points v1', 'OFF' or 'nOFF', or an OBJ, PLY or STL mesh");
   }
   if (options.expected_dimension && ps.dimension != options.expected_dimension)
     throw InputError(file, head.number,

@@ -5,6 +5,7 @@
 //                         blank lines and lines starting with '#' are ignored.
 //   OFF                   an OFF file in R^3 (faces, if any, are ignored here).
 //   nOFF                  GUDHI's n-dimensional OFF: "nOFF", the dimension, "NV NF NE", coordinates.
+//   OBJ, PLY, STL         the vertices of a surface mesh (io/mesh.hpp; detected by content or extension).
 // Written: delcert-points v1 (default), OFF or nOFF, always with the shortest decimal text that
 // reads back to the same double, so every format round-trips bit for bit.
 #pragma once

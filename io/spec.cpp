@@ -249,4 +249,17 @@ std::string read_spec_text(const std::string& source) {
 
 ManifoldSpec read_spec(const std::string& source) { return parse_spec(read_spec_text(source), source); }
 
+mpq_class parse_residual_tolerance(const std::string& text, const std::string& option) {
+  mpq_class t;
+  try {
+    t = exact::parse_rational(text);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(option, 0, "'" + text + "' is not a number (" + e.what() +
+                                    "); give a positive decimal such as 1e-6 or a fraction such as 1/1000000");
+  }
+  if (t <= 0)
+    throw InputError(option, 0, "'" + text + "' is not positive; the tolerance is the largest |F_i(p)| accepted, > 0");
+  return t;
+}
+
 }  // namespace delcert::io

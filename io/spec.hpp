@@ -77,6 +77,11 @@ ManifoldSpec parse_spec(const std::string& json_text, const std::string& source)
 // parse_spec (a second read of a FIFO or of a file being rewritten would hash other bytes).
 std::string read_spec_text(const std::string& source);
 
+// The command-line override of residual_tolerance (delcert-certify --residual-tolerance): a
+// positive rational written as an integer, a decimal ("1e-6") or a fraction ("1/1000000"), read
+// exactly. Throws InputError naming `option` otherwise (zero, negative, malformed, "inf", "nan").
+mpq_class parse_residual_tolerance(const std::string& text, const std::string& option = "--residual-tolerance");
+
 // Names of the built-in specs, sorted.
 std::vector<std::string> builtin_spec_names();
 // The text of a built-in spec, or nullptr.

@@ -7,7 +7,9 @@
 #include <limits>
 
 #include "core/refine/parameters.hpp"
+#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/mesh.hpp"
 #include "io/spec.hpp"
 
 namespace delcert::app {
@@ -17,6 +19,30 @@ std::string manifold_option_help() {
   auto names = io::builtin_spec_names();
   for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
   return s + ")";
+}
+
+void check_mesh_out(const std::string& path, const std::vector<std::string>& inputs,
+                    const std::vector<std::string>& other_outputs, bool directory_may_be_created) {
+  io::mesh_output_format(path, "--mesh-out");
+  io::check_output_path(path, "--mesh-out", inputs, other_outputs, directory_may_be_created);
+}
+
+void check_mesh_dimensions(const std::string& path, int m, int N) {
+  if (m != 2 || N != 3)
+    throw io::InputError(path, 0,
+                         "--mesh-out writes a surface mesh in R^3, but the manifold has m = " + std::to_string(m) +
+                             ", N = " + std::to_string(N) + "; leave out --mesh-out (the complex file holds the result)");
+}
+
+std::string mesh_out_text(const std::string& path, const io::PointSet& points, const io::Complex& complex) {
+  io::Complex triangles;
+  triangles.num_vertices = complex.num_vertices;
+  for (const auto& s : complex.simplices)
+    if (s.size() == 3) triangles.simplices.push_back(s);
+  if (const std::size_t left_out = complex.simplices.size() - triangles.simplices.size())
+    std::fprintf(stderr, "warning: %s: %zu maximal simplices that are not triangles left out of the mesh\n", path.c_str(),
+                 left_out);
+  return io::format_mesh(points, triangles, io::mesh_output_format(path, "--mesh-out"));
 }
 
 namespace {

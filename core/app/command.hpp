@@ -6,9 +6,12 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/manifold/on_manifold.hpp"
 #include "core/sampling/sampling.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
 
 namespace delcert::app {
 
@@ -49,6 +52,19 @@ double eps_option(const std::string& text);
 // not give an eps-net, and would run for hours), naming the smallest eps that fits; warns on
 // stderr beyond 10^6 dense points. By sampling::estimate_eps_net (a pilot, seeded).
 void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options);
+// --mesh-out FILE.off|FILE.ply of `tangential` and `refine`: the complex as a surface mesh that any
+// mesh viewer (and delcert-certify) opens. check_mesh_out runs before any work: the extension
+// names the format, the path must be writable and no input; check_mesh_dimensions refuses
+// (exit 2) a manifold other than a surface in R^3 (m = 2, N = 3).
+void check_mesh_out(const std::string& path, const std::vector<std::string>& inputs,
+                    const std::vector<std::string>& other_outputs, bool directory_may_be_created = false);
+void check_mesh_dimensions(const std::string& path, int m, int N);
+// The mesh text: the points and the complex's triangles. A maximal simplex that is not a triangle
+// (an edge or a vertex left over by an inconsistent complex) is not a face of a surface mesh: it
+// is left out, and a warning on stderr says how many.
+std::string mesh_out_text(const std::string& path, const io::PointSet& points, const io::Complex& complex);
+inline constexpr const char* kMeshOutHelp =
+    "also write the complex as a surface mesh, OFF or PLY by the extension (.off, .ply); m = 2, N = 3 only (written atomically)";
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);

@@ -44,7 +44,7 @@ namespace delcert::app {
 namespace {
 
 struct RefineArgs {
-  std::string manifold, points, out, mode = "practical";
+  std::string manifold, points, out, mesh_out, mode = "practical";
   std::string eps, gamma0 = "0.1", alpha = "0.3", beta = "1.1", delta0;
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
@@ -61,13 +61,15 @@ int run_refine(const RefineArgs& a) {
       throw io::InputError(a.out, 0, "--out: exists and is not a directory; refine writes a directory of four files");
     std::vector<std::string> outs;
     for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"}) outs.push_back((fs::path(a.out) / f).string());
-    for (const auto& o : outs) io::check_output_path(o, "--out", {a.manifold, a.points}, {}, true);
+    for (const auto& o : outs) io::check_output_path(o, "--out", {a.manifold, a.points}, {a.mesh_out}, true);
+    if (!a.mesh_out.empty()) check_mesh_out(a.mesh_out, {a.manifold, a.points}, outs);
   }
   manifold::Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
     throw io::InputError(manifold.spec().source, 0,
                          "intrinsic dimension " + std::to_string(m) + ": refinement is implemented for m = 2, 3 and 4");
+  if (!a.mesh_out.empty()) check_mesh_dimensions(a.mesh_out, m, N);
   if (a.points.empty() && a.eps.empty())
     throw io::InputError("delcert refine", 0, "give --points POINTS, or --eps E to start from an eps-net of M");
 
@@ -126,6 +128,7 @@ int run_refine(const RefineArgs& a) {
   ctx.manifold_source = manifold.spec().source;
   ctx.input = input_text;
   refine::write_refine_output(a.out, result, ctx);
+  if (!a.mesh_out.empty()) io::write_file_atomically(a.mesh_out, mesh_out_text(a.mesh_out, result.points, result.complex));
 
   const auto& f = result.final;
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), m, N);
@@ -150,6 +153,7 @@ int run_refine(const RefineArgs& a) {
   // Wall-clock time of the whole command (printed only; the outputs carry the refiner's own times).
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("time               %.3f s (%.3f s refining) -> %s\n", total, result.total_seconds, a.out.c_str());
+  if (!a.mesh_out.empty()) std::printf("mesh               %s\n", a.mesh_out.c_str());
   return result.converged ? kExitOk : kExitNotConverged;
 }
 
@@ -183,6 +187,7 @@ Command add_refine_command(CLI::App& app) {
       ->capture_default_str()
       ->transform(whole_number("a round count", std::numeric_limits<std::size_t>::max()));
   sub->add_option("--out", args->out, "output directory (created if missing)")->required();
+  sub->add_option("--mesh-out", args->mesh_out, kMeshOutHelp);
   return {sub, [args] { return run_refine(*args); }};
 }
 

@@ -1,4 +1,5 @@
-// delcert tangential --manifold SPEC --points POINTS --out COMPLEX [--stats STATS.json] [--threads T]
+// delcert tangential --manifold SPEC --points POINTS --out COMPLEX [--stats STATS.json] [--mesh-out MESH.off|MESH.ply]
+//                    [--threads T]
 //
 // Builds the tangential Delaunay complex of the points (docs/design.md §3.2) with T_p = p + ker J_F(p),
 // writes the union of the stars (maximal simplices, sorted) and, on request, a JSON summary.
@@ -31,7 +32,7 @@ namespace delcert::app {
 namespace {
 
 struct TangentialArgs {
-  std::string manifold, points, out, stats;
+  std::string manifold, points, out, stats, mesh_out;
   int threads = 0;
 };
 
@@ -56,14 +57,16 @@ int run_tangential(const TangentialArgs& a) {
   nlohmann::ordered_json times;
   // Every output path is checked before any work, and every output is written at the end, all
   // or nothing: a bad --stats must not leave a fresh --out behind.
-  io::check_output_path(a.out, "--out", {a.manifold, a.points}, {a.stats});
-  if (!a.stats.empty()) io::check_output_path(a.stats, "--stats", {a.manifold, a.points}, {a.out});
+  io::check_output_path(a.out, "--out", {a.manifold, a.points}, {a.stats, a.mesh_out});
+  if (!a.stats.empty()) io::check_output_path(a.stats, "--stats", {a.manifold, a.points}, {a.out, a.mesh_out});
+  if (!a.mesh_out.empty()) check_mesh_out(a.mesh_out, {a.manifold, a.points}, {a.out, a.stats});
   manifold::Manifold manifold(io::read_spec(a.manifold));
   const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
   if (m < 2 || m > 4)
     throw io::InputError(manifold.spec().source, 0,
                          "intrinsic dimension " + std::to_string(m) +
                              ": the tangential complex is implemented for m = 2, 3 and 4");
+  if (!a.mesh_out.empty()) check_mesh_dimensions(a.mesh_out, m, N);
   io::PointReadOptions read_options;
   read_options.expected_dimension = N;
   io::PointSet points = io::read_points(a.points, read_options);
@@ -109,6 +112,7 @@ int run_tangential(const TangentialArgs& a) {
   times["analyze"] = clock.lap();
 
   std::vector<std::pair<std::string, std::string>> outputs{{a.out, io::format_complex(assembly.complex)}};
+  if (!a.mesh_out.empty()) outputs.emplace_back(a.mesh_out, mesh_out_text(a.mesh_out, points, assembly.complex));
   times["write_complex"] = clock.lap();  // formatting; the files are written together below
 
   const double max_radius = std::sqrt(star_stats.max_radius2);
@@ -154,6 +158,7 @@ int run_tangential(const TangentialArgs& a) {
   std::printf("star simplices     %zu (%zu stars by the regular-triangulation fallback, %zu not closed)\n",
               assembly.star_cells, star_stats.fallbacks, star_stats.open);
   std::printf("maximal simplices  %zu -> %s\n", assembly.complex.simplices.size(), a.out.c_str());
+  if (!a.mesh_out.empty()) std::printf("mesh               %s\n", a.mesh_out.c_str());
   std::printf("inconsistent       %zu\n", assembly.inconsistent.size());
   std::printf("pseudomanifold     %s (pure: %s)\n", topology.pseudomanifold ? "yes" : "no", topology.pure ? "yes" : "no");
   std::printf("Euler char.        %ld\n", topology.euler_characteristic);
@@ -169,6 +174,7 @@ Command add_tangential_command(CLI::App& app) {
   sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
   sub->add_option("--points", args->points, "input points (delcert-points, OFF or nOFF), on M")->required();
   sub->add_option("--out", args->out, "output complex: maximal simplices, sorted (written atomically)")->required();
+  sub->add_option("--mesh-out", args->mesh_out, kMeshOutHelp);
   sub->add_option("--stats", args->stats, "also write a JSON summary (counts, consistency, topology, timings)");
   sub->add_option("--threads", args->threads, threads_help())->capture_default_str()->transform(thread_count());
   return {sub, [args] { return run_tangential(*args); }};

@@ -208,3 +208,26 @@ TEST(Spec, UnknownBuiltinListsTheKnownOnes) {
 
 }  // namespace
 }  // namespace delcert::io
+
+namespace delcert::io {
+namespace {
+
+// delcert-certify --residual-tolerance: a positive rational, read exactly; anything else is refused
+// naming the option (exit status 2 in the binary).
+TEST(ResidualTolerance, PositiveRationalsOnly) {
+  EXPECT_EQ(parse_residual_tolerance("1e-6"), mpq_class(1, 1000000));
+  EXPECT_EQ(parse_residual_tolerance("1/3"), mpq_class(1, 3));
+  EXPECT_EQ(parse_residual_tolerance("0.1"), mpq_class(1, 10));  // exactly 1/10, not the double
+  for (const char* bad : {"0", "-1e-6", "abc", "inf", "nan", "", "1/0", "1e-6x"}) {
+    try {
+      parse_residual_tolerance(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "--residual-tolerance");
+      EXPECT_EQ(std::string(e.what()).rfind("--residual-tolerance: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace delcert::io
