@@ -5,7 +5,7 @@ set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer and clang's sanitizer runtimes) are for scripts/fuzz.sh;
 # GCC's sanitizer runtimes (libasan8, libubsan1, for scripts/sanitize.sh) come with build-essential.
 PACKAGES=(build-essential cmake pkg-config libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev
+          libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev regina-normal-dev
           clang libclang-rt-14-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
