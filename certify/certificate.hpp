@@ -50,12 +50,11 @@ struct CheckEntry {
   // Appends a witness while keeping the list short; the total is counted in details.
   void add_witness(nlohmann::json w, std::size_t cap = 20);
 
-  // The internal consistency guard. A check records here what its CERTIFIED verdict implies
-  // about a certified bound it prints: "this lower bound is at least that", "this upper bound is
-  // at most that". The bounds and the verdicts are computed by different code (enclosures versus
-  // exact signs), so a violated requirement means the program itself is wrong: delcert-certify
-  // then stops with an internal error (exit 3) and certifies nothing. `bound` is exact; the
-  // comparison uses its enclosure's end on the permissive side, so a correct run never trips it.
+  // The internal consistency guard. A check records here what its CERTIFIED verdict implies about a certified bound
+  // it prints: "this lower bound is at least that", "this upper bound is at most that". The bounds and the verdicts
+  // are computed by different code (enclosures versus exact signs), so a violated requirement means the program
+  // itself is wrong: delcert-certify then stops with an internal error (exit 3) and certifies nothing. `bound` is
+  // exact; the comparison uses its enclosure's end on the permissive side, so a correct run never trips it.
   struct Requirement {
     std::string what;   // the printed quantity, e.g. "min_power_margin"
     double value = 0;   // the certified bound printed in the certificate

@@ -25,6 +25,7 @@
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
 #include "io/spec.hpp"
+#include "topology/three_sphere.hpp"
 
 namespace delcert::certify {
 
@@ -451,8 +452,7 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   return R;
 }
 
-// Check 8: the complex is a closed pseudomanifold with sphere links, and the topology the spec
-// expects.
+// Check 8: the complex is a closed pseudomanifold with sphere links, and the topology the spec expects.
 CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattice, const io::ExpectedTopology& expect) {
   CheckEntry topo(CheckId::topology);
   TopologyReport T = analyse_topology(K, m, &lattice);
@@ -477,6 +477,7 @@ CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattic
                   {"strongly_connected_components", T.strong_components}, {"uncovered_vertices", T.uncovered_vertices},
                   {"links_not_spheres", T.bad_links}, {"links_unrecognised", T.unknown_links}, {"face_counts", T.f},
                   {"euler_characteristic", T.euler}, {"betti_z2", T.betti_z2}, {"betti_z3", T.betti_z3}};
+  if (m >= 4) topo.details["link_recognition"] = topology::recogniser();  // decides 3-dimensional links
   json expected = json::object();
   if (expect.euler_characteristic) expected["euler_characteristic"] = *expect.euler_characteristic;
   if (!expect.betti_z2.empty()) expected["betti_z2"] = expect.betti_z2;
@@ -492,17 +493,15 @@ CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattic
   return topo;
 }
 
-// A check that is not a claim of this input: its decision is reported (details.decision), not
-// held against the input.
+// A check that is not a claim of this input: its decision is reported (details.decision), not held against the input.
 void report_unclaimed(CheckEntry& e) {
   e.details["decision"] = to_string(e.verdict);
   e.verdict = Verdict::report;
   e.summary += " [not claimed]";
 }
 
-// Check 7: are the star simplices secure (paper Definition 3.1), with the parameters that check
-// 9 derives from the measured values? Decided only with eps a certified sampling radius; a claim
-// only with "secure": true (else REPORT).
+// Check 7: are the star simplices secure (paper Definition 3.1), with the parameters that check 9 derives from the
+// measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
                                   bool stars_are_the_complex) {
@@ -600,10 +599,9 @@ CheckEntry not_computed(CheckId id, const std::string& why = "") {
   return e;
 }
 
-// The checks that need T_p M at every point (Del_TM and what is measured on it), when some point
-// is off M: accepted only for a complex claimed to be restricted Delaunay (check 1), they are not
-// computed. REPORT (Del_TM is not what the input claims), UNDECIDED where the claims file makes a
-// claim the check would have decided.
+// The checks that need T_p M at every point (Del_TM and what is measured on it), when some point is off M: accepted
+// only for a complex claimed to be restricted Delaunay (check 1), they are not computed. REPORT (Del_TM is not what
+// the input claims), UNDECIDED where the claims file makes a claim the check would have decided.
 CheckEntry tangent_space_undefined(CheckId id, int point, bool claimed) {
   CheckEntry e(id);
   const std::string why = "point " + std::to_string(point) +
@@ -724,9 +722,8 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
       rd.add_witness(vertex_witness(s));
     }
-    // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point
-    // of M equidistant from m + 2 points never resolves), and when it is pure every lower one is a
-    // face of an m-simplex.
+    // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
+    // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
     for (const auto& s0 : given->simplices) {
       Simplex s = s0;
       std::sort(s.begin(), s.end());
@@ -1000,9 +997,8 @@ Certificate run_certify(const CertifyOptions& o) {
     theorem = tangent_space_undefined(CheckId::theorem, first, false);
   }
 
-  // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by
-  // check 3 (wrong dimension, with the simplex as witness); their 2^n faces are never enumerated
-  // (a 32-vertex simplex would hang).
+  // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by check 3 (wrong
+  // dimension, with the simplex as witness); their 2^n faces are never enumerated (a 32-vertex simplex would hang).
   const io::Complex& K = tangential_kind || !in.given ? stars->complex : *in.given;  // what checks 5 and 8 look at
   std::vector<Simplex> lattice_simplices;
   for (const auto& s : K.simplices)

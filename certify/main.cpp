@@ -33,31 +33,20 @@ int main(int argc, char** argv) {
   for (const auto& n : io::builtin_spec_names()) builtins += (builtins.empty() ? "" : ", ") + n;
   app.add_option("--manifold", o.manifold, "manifold spec: a JSON file or builtin:NAME (" + builtins + ")")->required();
   app.add_option("--points", o.points, "point set (delcert-points v1, OFF, nOFF, or an OBJ/PLY/STL mesh's vertices)")->required();
-  app.add_option("--complex", o.complex,
-                 "complex to verify (delcert-complex v1, OFF, OBJ, PLY, STL, GUDHI simplex list); without it the tangential complex of the points is "
-                 "computed and audited");
+  app.add_option("--complex", o.complex, "complex to verify (delcert-complex v1, OFF, OBJ, PLY, STL, GUDHI simplex list); without it the tangential complex of the points is computed and audited");
   app.add_option("--complex-format", o.complex_format, "format of --complex (default auto: detected; docs/formats.md)")
       ->check(CLI::IsMember({"auto", "delcert", "off", "obj", "ply", "stl", "gudhi"}));
-  app.add_option("--residual-tolerance", o.residual_tolerance,
-                 "largest |F_i(p)| accepted for an input point, replacing the spec's residual_tolerance (a positive "
-                 "decimal or fraction, read exactly; recorded in the certificate)");
+  app.add_option("--residual-tolerance", o.residual_tolerance, "largest |F_i(p)| accepted for an input point, replacing the spec's residual_tolerance (a positive decimal or fraction, read exactly; recorded in the certificate)");
   std::string kind;
-  app.add_option("--kind", kind,
-                 "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files), "
-                 "restricted (Del_RM, the default for OFF/OBJ/PLY/STL: a surface mesher's output) or intrinsic (Del_M)")
+  app.add_option("--kind", kind, "what the complex is claimed to be: tangential (Del_TM, the default for delcert-complex files), restricted (Del_RM, the default for OFF/OBJ/PLY/STL: a surface mesher's output) or intrinsic (Del_M)")
       ->check(CLI::IsMember({"tangential", "restricted", "intrinsic"}));
-  app.add_option("--claims", o.claims,
-                 "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
-  app.add_flag("--skip-restricted", o.skip_restricted,
-               "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
+  app.add_option("--claims", o.claims, "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
+  app.add_flag("--skip-restricted", o.skip_restricted, "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
   std::string report_path;
-  app.add_option("--report", report_path,
-                 "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the "
-                 "complex with the witnesses); written atomically with --out");
+  app.add_option("--report", report_path, "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the complex with the witnesses); written atomically with --out");
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
+      ->check(CLI::Range(0, 256))->capture_default_str();
   app.add_flag("--no-times", no_times, "leave wall-clock times out of the certificate (byte-identical reruns)");
   try {
     app.parse(argc, argv);
@@ -68,9 +57,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!kind.empty())
-    o.kind = kind == "restricted"  ? certify::ComplexKind::restricted
-             : kind == "intrinsic" ? certify::ComplexKind::intrinsic
-                                   : certify::ComplexKind::tangential;
+    o.kind = kind == "restricted" ? certify::ComplexKind::restricted : kind == "intrinsic" ? certify::ComplexKind::intrinsic : certify::ComplexKind::tangential;
   if ((!kind.empty() || o.complex_format != "auto") && o.complex.empty()) {
     std::cerr << "delcert-certify: --kind and --complex-format need --complex (they describe the given complex)\n";
     return 2;

@@ -42,8 +42,8 @@ using exact::Tri;
 
 // Is the (pure, d-dimensional) complex given by its maximal simplices a triangulated d-sphere?
 // Decided for d <= 2 (d = 0: two points; d = 1: one cycle; d = 2: connected closed surface, every
-// vertex link a cycle, Euler characteristic 2). For d >= 3 the answer is `unknown` (a homology
-// sphere is reported in `why`, since recognising S^3 is not attempted).
+// vertex link a cycle, Euler characteristic 2) and for d = 3 (a homology sphere over Z/2, Z/3 goes
+// to Regina's S^3 recognition, topology/three_sphere.hpp). For d >= 4 the answer is at best `unknown`.
 Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string* why);
 
 struct TopologyReport {

@@ -1,7 +1,7 @@
 # `cmake --install BUILD [--prefix PREFIX]` (README.md, "Using the library"; docs/design.md §4):
 #
 #   bin/delcert, bin/delcert-certify                 the two programs
-#   lib/libdelcert_{exact,io,certify}.a              the libraries of the certifier (not delcert_core)
+#   lib/libdelcert_{exact,io,certify,topology}.a     the libraries of the certifier (not delcert_core)
 #   include/delcert/{exact,io,certify}/...           their headers, included as "exact/x.hpp"
 #   lib/cmake/delcert/                               the package config: find_package(delcert)
 #
@@ -17,7 +17,10 @@ set(DELCERT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/delcert)
 set_target_properties(delcert_exact PROPERTIES EXPORT_NAME exact)
 set_target_properties(delcert_io PROPERTIES EXPORT_NAME io)
 set_target_properties(delcert_certify PROPERTIES EXPORT_NAME certify)
-install(TARGETS delcert_exact delcert_io delcert_certify delcert delcert-certify
+# delcert_topology (Regina's 3-sphere recognition) is linked by delcert_certify privately: installed
+# for linking, its header not (no installed header includes it).
+set_target_properties(delcert_topology PROPERTIES EXPORT_NAME topology)
+install(TARGETS delcert_exact delcert_io delcert_certify delcert_topology delcert delcert-certify
         EXPORT delcertTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

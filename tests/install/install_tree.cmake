@@ -7,6 +7,7 @@ file(REMOVE_RECURSE ${PREFIX})
 delcert_run(${CMAKE_COMMAND} --install ${DELCERT_BINARY_DIR} --prefix ${PREFIX})
 foreach(file ${BINDIR}/delcert ${BINDIR}/delcert-certify
              ${LIBDIR}/libdelcert_exact.a ${LIBDIR}/libdelcert_io.a ${LIBDIR}/libdelcert_certify.a
+             ${LIBDIR}/libdelcert_topology.a
              ${INCLUDEDIR}/delcert/exact/interval.hpp ${INCLUDEDIR}/delcert/io/spec.hpp
              ${INCLUDEDIR}/delcert/certify/certify.hpp
              ${LIBDIR}/cmake/delcert/delcertConfig.cmake ${LIBDIR}/cmake/delcert/delcertConfigVersion.cmake
