@@ -116,15 +116,7 @@ CLI::Validator thread_count() {
                         "0.." + std::to_string(kMaxThreads), "THREADS");
 }
 
-double eps_option(const std::string& text) {
-  const refine::ExactParameter eps = refine::parse_rational_option("--eps", text);
-  try {
-    refine::validate_eps(eps);
-  } catch (const refine::ParameterError& e) {
-    throw io::InputError(e.option(), 0, e.reason());
-  }
-  return eps.value.get_d();
-}
+double eps_option(const std::string& text) { return refine::parse_eps_option(text).value.get_d(); }
 
 void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options) {
   const sampling::EpsNetEstimate e = sampling::estimate_eps_net(manifold, options);

@@ -100,6 +100,16 @@ ExactParameter parse_rational_option(const std::string& option, const std::strin
   }
 }
 
+ExactParameter parse_eps_option(const std::string& text) {
+  ExactParameter eps = parse_rational_option("--eps", text);
+  try {
+    validate_eps(eps);
+  } catch (const ParameterError& e) {
+    throw io::InputError(e.option(), 0, e.reason());
+  }
+  return eps;
+}
+
 Constants parse_constants(const ConstantTexts& a, int m) {
   auto checked = [](auto&& validate_part) {
     try {
@@ -110,10 +120,7 @@ Constants parse_constants(const ConstantTexts& a, int m) {
   };
   Constants c;
   if (!a.delta0) c.gamma0 = parse_rational_option("--gamma0", a.gamma0);
-  if (a.eps) {
-    c.eps = parse_rational_option("--eps", *a.eps);
-    checked([&] { validate_eps(*c.eps); });
-  }
+  if (a.eps) c.eps = parse_eps_option(*a.eps);
   c.gamma0 = parse_rational_option("--gamma0", a.gamma0);
   c.alpha = parse_rational_option("--alpha", a.alpha);
   c.beta = parse_rational_option("--beta", a.beta);

@@ -82,6 +82,9 @@ struct ConstantTexts {
 };
 // An exact rational option ("0.1", "1/10", "1e-1"); throws io::InputError naming `option` otherwise.
 ExactParameter parse_rational_option(const std::string& option, const std::string& text);
+// --eps as `sample` and `refine` read it: parse_rational_option, then validate_eps; throws
+// io::InputError naming --eps.
+ExactParameter parse_eps_option(const std::string& text);
 // The constants parsed exactly (δ0 defaulted for intrinsic dimension m) and validated; throws
 // io::InputError naming the option (--eps, --gamma0, ...). When several are wrong, the first
 // reported is the one `delcert refine` has always reported: Γ0 is read first when it gives the
