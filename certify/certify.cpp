@@ -647,8 +647,11 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                   {"attained_near", location_json(R.cells[R.covering_point].covering_location)},
                   {"in_the_cell_of", R.covering_point}};
   cov.details = {{"assumptions",
-                  {{"charts", "none: no reach and no graph property is assumed; the other sheets of M in each ball are "
-                              "excluded box by box (docs/design.md §3.8)"},
+                  {{"charts", R.reach_slabs == 0 ? "none: no reach and no graph property is assumed; the other sheets of "
+                                                   "M in each ball are excluded box by box (docs/design.md §3.8)"
+                                                 : "the reach of M is at least " + spec.reach->text + " (the spec's, " +
+                                                       "assumed): the graph lemma (docs/design.md §3.8) took " +
+                                                       std::to_string(R.reach_slabs) + " chart slabs"},
                    {"components", one_component ? "the spec's expected b0 = 1: M is connected and holds a restricted "
                                                   "Voronoi vertex"
                                                 : "every connected component of M holds a restricted Voronoi vertex "
@@ -1022,6 +1025,10 @@ Certificate run_certify(const CertifyOptions& o) {
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
+    // THE GRAPH LEMMA (rvd.cpp) in codimension >= 2 only, where excluding the other sheets box by box
+    // costs 2k searches of a k-dimensional slab; in codimension 1 that is cheap and assumes nothing.
+    if (spec.reach && N - m >= 2) ro.cell.reach = sqrt_lower(spec.reach->squared);
+    ro.cell.selector = spec.selector ? &*spec.selector : nullptr;
     R = compute_restricted_delaunay(system, P, grid, ro);
     covering = check_covering(*R, claims.covering, spec);
     restricted = check_restricted(*R, in.given, restricted_kind, m);

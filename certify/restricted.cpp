@@ -54,6 +54,8 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   for (int p = 0; p < n; ++p) {
     radius[p] = 2 * std::max(nn[p], median);
     if (!(radius[p] > 0 && std::isfinite(radius[p]))) radius[p] = grid.diameter();
+    // THE GRAPH LEMMA (rvd.cpp) holds out to nearly the reach from p: start inside it when it is used.
+    if (o.cell.reach > 0) radius[p] = std::min(radius[p], 0.8 * o.cell.reach);
   }
   std::vector<int> todo(n);
   for (int p = 0; p < n; ++p) todo[p] = p;
@@ -98,7 +100,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   for (int p = 0; p < n; ++p) {
     const RestrictedCellReport& cell = R.cells[p];
     R.boxes += cell.boxes, R.krawczyk_calls += cell.krawczyk_calls, R.krawczyk_failures += cell.krawczyk_failures;
-    R.chart_failures += cell.chart_failures;
+    R.chart_failures += cell.chart_failures, R.reach_slabs += cell.reach_slabs;
     if (!cell.complete) R.incomplete_points.push_back(p);
     R.min_radius = std::min(R.min_radius, cell.graph_radius);
     if (cell.covering_bound > R.covering || R.covering_point < 0) R.covering = cell.covering_bound, R.covering_point = p;

@@ -4,7 +4,8 @@
 //
 // THE RADIUS. Every cell is analysed in a ball B(p, r_p) (no reach and no graph property is
 // assumed: rvd.hpp). The first radius is r_p = 2 max(d_p, median of the d_q), d_p the distance from
-// p to its nearest other point (a cell rarely reaches farther); points whose cell reaches its
+// p to its nearest other point (a cell rarely reaches farther), at most 0.8 reach with THE GRAPH
+// LEMMA of rvd.cpp (which holds out to nearly the reach); points whose cell reaches its
 // ball's boundary, or
 // whose radius is not above the largest covering bound c found so far, are analysed again with a
 // larger radius (at most `rounds` times).
@@ -78,7 +79,7 @@ struct RestrictedDelaunay {
   // cross-check failure. Then `simplices` are all the m-simplices of Del_RM(P).
   bool covering_certified = false;
   std::string reason;                       // why not, when not
-  long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
+  long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0, reach_slabs = 0;
 };
 
 RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& system, const io::PointSet& points,

@@ -106,6 +106,20 @@ class CellAnalysis {
       }
       cands_.push_back(std::move(C));
     }
+    if (options.selector)
+      for (const auto& t : options.selector->terms()) sel_coef_.push_back(ia(exact::enclose(t.coefficient)));
+    zero_u_.assign(m_, Interval{0, 0});
+    const exact::ChartEnclosure::BasePoint base =
+        options.reach > 0 ? chart_.base_point(system, options.selector) : exact::ChartEnclosure::BasePoint{};
+    if (base.certified) {
+      exact::UpwardRounding up2;  // THE GRAPH LEMMA's 2 tau cos Θ, rounded down (0: not available)
+      const IA two_tau = IA(2) * IA(options.reach), sigma(0, base.sin_tilt), q = (IA(r) + IA(base.distance)) / two_tau;
+      if (q.sup() < 1) {
+        const IA cos_theta = (IA(1) - IA(2) * exact::square(q)) * exact::sqrt(IA(1) - exact::square(sigma)) -
+                             IA(2) * q * exact::sqrt(IA(1) - exact::square(q)) * sigma;
+        lemma_bound_ = std::max(0.0, (two_tau * cos_theta).inf());
+      }
+    }
   }
 
   // The first pass: subdivision until every box is resolved; returns the largest distance from p
@@ -364,6 +378,39 @@ class CellAnalysis {
     return excluded(U, H, S, levels - 1) && excluded(U, H2, S, levels - 1);
   }
 
+  // THE GRAPH LEMMA. Hypothesis: tau = options.reach <= reach(M). base_ (exact::ChartEnclosure::
+  // base_point): p* in M, |p* - p| <= delta, sin θ(span T, T_{p*} M) <= sigma. Claim: when the chart
+  // proves exactly one point x(u) of {F = 0} in U x Hc for every u in U, s > 0 on that box's image,
+  // and sqrt(r^2 - inf_U |T u|^2) + sup_Hc |Nn h| <= 2 tau cos Θ, Θ = 2 arcsin((r + delta) / (2 tau))
+  // + arcsin sigma, then x(u) is the only point of M ∩ B(p, r) over u (Hc holds them all: THE SLAB
+  // INVARIANT with no difference test). Proof: x(u) is in M (F = 0, s > 0). Let y != x(u) be in
+  // M ∩ B(p, r) over the same u. |y - p*| < r + delta < 2 tau, so the largest principal angle
+  // θ(T_y M, T_{p*} M) <= 2 arcsin(|y - p*| / (2 tau)) (Boissonnat, Lieutier, Wintraecken 2019,
+  // Cor. 3); largest principal angles obey the triangle inequality, so θ_y := θ(T_y M, span T) <= Θ.
+  // v = x - y is orthogonal to span T (same u): v = Nn (h_x - h_y), and |Nn h_y|^2 = |y - p|^2 -
+  // |T u|^2 < r^2 - |T u|^2, so |v| < sqrt(r^2 - inf |T u|^2) + sup |Nn h_x|. Federer (1959, Thm
+  // 4.18): |P_N v| <= |v|^2 / (2 tau), N the normal space at y; |P_T v| = |(P_T - P_span T) v| <=
+  // sin θ_y |v|; so |v|^2 <= sin^2 θ_y |v|^2 + |v|^4 / (4 tau^2) and |v| >= 2 tau cos θ_y >= 2 tau cos
+  // Θ: impossible. Θ depends on the cell only (lemma_bound_ = 2 tau cos Θ, computed in interval
+  // arithmetic in the constructor: with q = (r + delta) / (2 tau) < 1, cos Θ = (1 - 2q^2) sqrt(1 -
+  // sigma^2) - 2q sqrt(1 - q^2) sigma; Θ <= 3π/2, so cos Θ > 0 already proves Θ < π/2). The
+  // inequality holds out to r close to tau where M is nearly flat over T_p.
+  bool graph_lemma(const Box& U, const Box& Hc, const IA& room) const {
+    Box X;
+    if (!(lemma_bound_ > 0) || !chart_.image(U, Hc, X) || !selected(X)) return false;
+    exact::UpwardRounding up;
+    const IA v = exact::sqrt(IA(0, room.sup())) + exact::sqrt(dist2(zero_u_, Hc));
+    return v.sup() <= lemma_bound_;
+  }
+  // s > 0 on all of X (no selector: true).
+  bool selected(const Box& X) const {
+    if (sel_coef_.empty()) return true;
+    exact::UpwardRounding up;
+    SmallBuffer<IA, 16> x(N_);
+    for (int v = 0; v < N_; ++v) x[v] = ia(X[v]);
+    return opt_.selector->evaluate_with<IA>(x.span(), [&](std::size_t i) { return sel_coef_[i]; }).inf() > 0;
+  }
+
   void visit(Work w, std::vector<Work>& stack) {
     ++report_.boxes;
     report_.max_depth = std::max(report_.max_depth, w.depth);
@@ -420,7 +467,11 @@ class CellAnalysis {
       // takes over.
       double widest_u = 0;
       for (const auto& i : w.U) widest_u = std::max(widest_u, i.width());
-      Box Hc;
+      Box Hc = ch.H;
+      if (ch.status == exact::ChartStatus::unique && graph_lemma(w.U, Hc, room)) {
+        if (!intersect(Hc, H)) return discard();  // no point of M ∩ B(p, r) over U in Hpar
+        chart_slab = true, ++report_.reach_slabs;
+      }
       for (int attempt = 0; attempt < 2 && !chart_slab && ch.status == exact::ChartStatus::unique; ++attempt) {
         Hc = ch.H;
         for (auto& i : Hc) {
@@ -583,7 +634,7 @@ class CellAnalysis {
       const Box& root = kr.nearby_root ? *kr.nearby_root : kr.box;
       const Box U(root.begin(), root.begin() + m_), Hv(root.begin() + m_, root.end());
       Box X;
-      if (!chart_.image(U, Hv, X) || !separated(simplex, X)) return false;
+      if (!chart_.image(U, Hv, X) || !selected(X) || !separated(simplex, X)) return false;
       report_.vertices.push_back({simplex, std::move(X)});
     }
     return true;
@@ -659,6 +710,9 @@ class CellAnalysis {
   double r_ = 0, rho_u_ = 0, gN_ = 0;
   IA r2_;                                        // r^2, enclosed
   std::vector<Candidate> cands_;
+  std::vector<IA> sel_coef_;                     // the selector's coefficients, enclosed
+  double lemma_bound_ = 0;                       // THE GRAPH LEMMA's 2 tau cos Θ (0: not used)
+  Box zero_u_;                                   // m times [0, 0]
   std::map<std::vector<int>, exact::SquareSystem> systems_;
   RestrictedCellReport report_;
 };

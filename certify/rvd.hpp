@@ -13,10 +13,13 @@
 // derived from r, not a separate option), and over a box U its normal coordinates satisfy
 // |h_l|^2 <= |Nn h|^2 / g_N < (r^2 - inf_U |T u|^2) / g_N: the slab H_ball(U).
 //
-// NO GRAPH ASSUMPTION. The chart's Krawczyk uniqueness covers only its slab H: another sheet of M
-// over the same u (the far side of a sphere, the other side of a thin neck) may lie in the ball
-// outside H. It is not assumed away (no reach, no graph property over T_p): the subdivision
-// excludes it, box by box, as follows.
+// NO GRAPH ASSUMPTION (by default). The chart's Krawczyk uniqueness covers only its slab H: another
+// sheet of M over the same u (the far side of a sphere, the other side of a thin neck) may lie in
+// the ball outside H. It is not assumed away: the subdivision excludes it, box by box, as follows
+// (or, with options.reach, by THE GRAPH LEMMA of rvd.cpp, whose hypothesis is that reach).
+// With a selector, M = {F = 0, s > 0}; the statements below hold for all of {F = 0} ⊇ M, except
+// that a vertex is reported only where s > 0 is proven, and a slab from the graph lemma holds the
+// points of M only.
 //
 // THE SLAB INVARIANT. Each box U of the subdivision of U0 carries a normal slab H_eff(U) and a
 // candidate set S(U) such that every point x of M ∩ B(p, r) ∩ Vor(p) with parameter u in U has its
@@ -88,6 +91,11 @@ struct RestrictedCellOptions {
   // COMBINED SIGNS are tried on boxes with at most this many candidates besides p (their cost
   // grows with its square; larger boxes rarely gain). Work only.
   int combined_signs_max = 8;
+  // THE GRAPH LEMMA (rvd.cpp): reach > 0 is a lower bound of the reach of M, TAKEN AS AN ASSUMPTION
+  // (the spec's declared reach); then a chart slab proved unique needs no difference test where
+  // the lemma's inequality holds. 0: nothing is assumed. selector: the s of M = {F = 0, s > 0}.
+  double reach = 0;
+  const exact::Polynomial* selector = nullptr;
 };
 
 struct RestrictedVoronoiVertex {
@@ -121,6 +129,7 @@ struct RestrictedCellReport {
   std::string reason;     // why not complete ("" when complete)
   // Counters.
   long boxes = 0, kept = 0, discarded = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
+  long reach_slabs = 0;  // chart slabs taken by the graph lemma (the reach assumption was used)
   int max_depth = 0;
 };
 

@@ -442,6 +442,63 @@ bool ChartEnclosure::free_of_M(const Box& U, const Box& H) const {
   return false;
 }
 
+// THE TILT. (p* := x(0), the chart's point over u = 0, in the box X0 = the image of U0 x H0.)
+// A = Nn^T (k x N, exact, enclosed by Nn_enc) has rank k (its Gram matrix is bounded
+// below by g_N > 0) and A T = 0, so ker A = span T (dimension m). For x in the box X0 and any k x k
+// matrix W (doubles, used exactly), let B = W J_F(x) and E = B - A, with e >= |E|_F (interval
+// arithmetic under upward rounding: J_F(X0) from F's exact partial derivatives, which enclose
+// J_F(x)). By Weyl's inequality sigma_min(B) >= sigma_min(A) - |E|_2 >= sqrt(g_N) - e =: d; when
+// d > 0, B has rank k, so J_F(x) does and ker B = ker J_F(x) (dimension m). For a unit t in span T,
+// A t = 0, so |B t| = |E t| <= e, and its distance to ker B is |B^T (B B^T)^-1 B t| <= |B t| /
+// sigma_min(B) <= e / d. Both spaces have dimension m, so the largest principal angle θ is the
+// largest angle from a unit t of span T to ker J_F(x): sin θ <= e / d. W is chosen (doubles) so
+// that B is close to A: W = A~ J~^T (J~ J~^T)^-1 with J~ = J_F(p) and A~ = Nn^T rounded; any W is
+// sound (a poor one only gives a bound >= 1, which is refused).
+ChartEnclosure::BasePoint ChartEnclosure::base_point(const ImplicitSystem& F, const Polynomial* selector) const {
+  const Impl& S = *impl_;
+  const int N = S.N, m = S.m, k = S.k;
+  if (F.ambient_dimension() != N || F.codimension() != k) throw std::invalid_argument("chart base point: system mismatch");
+  BasePoint out;
+  // Over a tiny box U0 around u = 0 rather than u = 0 itself: a zero-width box with p on M leaves
+  // enclose() a slab too thin for the enclosed chart's rounding. X0 holds x(0) all the same.
+  double scale = 0;
+  for (double x : S.p) scale = std::max(scale, std::abs(x));
+  const double w = std::ldexp(scale > 0 ? scale : 1.0, -30);
+  const Box U0(m, Interval{-w, w});
+  const ChartResult at0 = enclose(U0);
+  if (at0.status != ChartStatus::unique) return out;
+  Eigen::MatrixXd Jd = F.jacobian(S.p), Ad(k, N);
+  for (int v = 0; v < N; ++v)
+    for (int l = 0; l < k; ++l) Ad(l, v) = S.Nn_enc[v * k + l].midpoint();
+  const Eigen::MatrixXd W = Ad * Jd.transpose() * (Jd * Jd.transpose()).inverse();
+  if (!W.allFinite()) return out;
+  const double gN = gram_bounds().normal;
+  detail::EnsureUpward guard;
+  std::vector<IA> X;
+  for (const auto& i : at0.X) X.push_back(detail::to_ia(i));
+  if (selector && !(detail::evaluate(*selector, detail::coefficient_enclosures(*selector), X).inf() > 0)) return out;
+  std::vector<IA> J(static_cast<std::size_t>(k) * N);  // J_F(X0), k x N
+  for (int i = 0; i < k; ++i)
+    for (int v = 0; v < N; ++v) {
+      const Polynomial d = F.equations()[i].derivative(v);
+      J[i * N + v] = detail::evaluate(d, detail::coefficient_enclosures(d), X);
+    }
+  IA e2(0);
+  for (int l = 0; l < k; ++l)
+    for (int v = 0; v < N; ++v) {
+      IA b = -detail::to_ia(S.Nn_enc[v * k + l]);
+      for (int i = 0; i < k; ++i) b += IA(W(l, i)) * J[i * N + v];
+      e2 += square(b);
+    }
+  const IA e = CGAL::sqrt(e2), d = CGAL::sqrt(IA(gN)) - e;
+  if (!(d.inf() > 0) || !detail::finite(e)) return out;
+  out.sin_tilt = (e / d).sup();
+  out.distance = CGAL::sqrt(IA(offset_norm2(U0, at0.H).hi)).sup();
+  out.x = at0.X;
+  out.certified = out.sin_tilt < 1 && std::isfinite(out.distance);
+  return out;
+}
+
 ChartResult ChartEnclosure::enclose_in(const Box& U, const Box& H) const {
   ChartResult out;
   const KrawczykResult r = krawczyk(impl_->G, U, H, impl_->options.krawczyk);

@@ -128,6 +128,24 @@ class ChartEnclosure {
   // that the plain enclosure of a wide box loses.
   bool free_of_M(const Box& U, const Box& H) const;
 
+  // THE BASE POINT AND THE TILT (for the graph lemma of certify/rvd.cpp, docs/design.md §3.8).
+  // `F` must be the system this chart was built from, `selector` null or the s of M = {F = 0, s > 0}.
+  // certified: the chart proves exactly one point p* of {F = 0} over u = 0 with normal coordinate in
+  // a box H0 (enclose of a tiny box U0 around 0), s > 0 on the box `x`, the image of U0 x H0 (so p*
+  // is a point of M),
+  // |p* - p| <= distance, and for EVERY x in `x` with J_F(x) of rank k,
+  //   sin θ(span T, ker J_F(x)) <= sin_tilt < 1,
+  // θ the largest principal angle, and J_F has rank k on all of `x`. Proof (chart.cpp,
+  // base_point): Weyl's inequality on B = W J_F(x) against A = Nn^T, W any k x k matrix of doubles.
+  // Not certified: nothing is claimed.
+  struct BasePoint {
+    bool certified = false;
+    Box x;                // N intervals holding p*
+    double distance = 0;  // >= |p* - p|, rounded up
+    double sin_tilt = 1;  // >= sin θ, rounded up
+  };
+  BasePoint base_point(const ImplicitSystem& F, const Polynomial* selector = nullptr) const;
+
   struct Impl;
 
  private:

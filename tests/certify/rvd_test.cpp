@@ -272,6 +272,56 @@ TEST(RestrictedCell, CombinedSignsChangeTheWorkNotTheAnswer) {
   }
 }
 
+TEST(RestrictedCell, GraphLemmaChangesTheWorkNotTheAnswer) {
+  // THE GRAPH LEMMA (a reach, rvd.cpp) against the box-by-box exclusion of the other sheets, in
+  // codimension 2 (Clifford torus T^2 in R^4, reach 1) and 3 (T^3 in R^6): the same vertex simplices
+  // at every point, nothing undecided either way, covering bounds each at least the other run's
+  // farthest vertex and within 5%; the lemma took slabs. With a reach too small for the ball
+  // (0.05) its inequality never holds: no slab taken, the same answer.
+  struct Case {
+    std::vector<std::string> equations;
+    io::PointSet P;
+    double r;
+  };
+  // Radii inside the lemma's range (nearly the reach) and above each cell's extent.
+  const Case cases[] = {{{"x1^2 + x2^2 - 1", "x3^2 + x4^2 - 1"}, torus2_lattice(12, 14, 0.3, 9), 0.8},
+                        {{"x1^2 + x2^2 - 1", "x3^2 + x4^2 - 1", "x5^2 + x6^2 - 1"}, torus3_bcc(6, 0.3, 10), 0.9}};
+  for (const auto& c : cases) {
+    const exact::ImplicitSystem F = exact::ImplicitSystem::parse(c.equations, c.P.dimension);
+    const detail::PointGrid grid(c.P, F.intrinsic_dimension());
+    RestrictedCellOptions lemma, boxwise, small;
+    lemma.graph_radius = boxwise.graph_radius = small.graph_radius = c.r;
+    lemma.reach = 1, small.reach = 0.05;
+    long slabs = 0;
+    for (int p = 0; p < 8; ++p) {
+      const RestrictedCellReport a = analyse_restricted_cell(F, c.P, grid, p, lemma);
+      const RestrictedCellReport b = analyse_restricted_cell(F, c.P, grid, p, boxwise);
+      const RestrictedCellReport z = analyse_restricted_cell(F, c.P, grid, p, small);
+      ASSERT_TRUE(a.complete && b.complete && z.complete) << p << ": " << a.reason << " / " << b.reason << " / " << z.reason;
+      EXPECT_EQ(b.reach_slabs, 0);
+      EXPECT_EQ(z.reach_slabs, 0);
+      slabs += a.reach_slabs;
+      std::vector<std::vector<int>> sa, sb, sz;
+      double far_a = 0, far_b = 0;
+      for (const auto* R : {&a, &b, &z})
+        for (const auto& v : R->vertices) {
+          double d = 0;
+          for (std::size_t i = 0; i < v.x.size(); ++i) d += std::pow(v.x[i].lo - c.P.point(p)[i], 2);
+          (R == &a ? sa : R == &b ? sb : sz).push_back(v.simplex);
+          if (R == &a) far_a = std::max(far_a, std::sqrt(d));
+          if (R == &b) far_b = std::max(far_b, std::sqrt(d));
+        }
+      EXPECT_FALSE(sa.empty());
+      EXPECT_EQ(sa, sb) << p;
+      EXPECT_EQ(sz, sb) << p;
+      EXPECT_GE(a.covering_bound, far_b * (1 - 1e-9)) << p;
+      EXPECT_GE(b.covering_bound, far_a * (1 - 1e-9)) << p;
+      EXPECT_NEAR(a.covering_bound, b.covering_bound, 0.05 * b.covering_bound) << p;
+    }
+    EXPECT_GT(slabs, 0);
+  }
+}
+
 TEST(RestrictedCell, AVertexOnASplitPlaneIsDecided) {
   // A hexagonal lattice on the Clifford torus, 26 points in each of 30 rows (every other row
   // shifted by half a step). Each row has identical (x3, x4), and at point 0 = (1, 0, 1, 0) the

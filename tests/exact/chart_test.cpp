@@ -259,6 +259,60 @@ TEST(Chart, SO3EnclosuresHoldTheExactPoints) {
   }
 }
 
+// THE BASE POINT AND THE TILT (ChartEnclosure::base_point) against closed forms on an ellipse
+// x1^2 + 4 x2^2 = 1 (off it, ker J_F(p) is not the tangent line at the foot p* on the normal line):
+// the bounds hold and are not vacuous (up to the 2^-30-wide box U0 around u = 0); a selector must
+// be proven positive.
+TEST(Chart, BasePointBoundsTheTiltAndTheDistance) {
+  const ImplicitSystem F = ImplicitSystem::parse({"x1^2 + 4*x2^2 - 1"}, 2);
+  for (double t : {0.3, 1.0, 2.0, 4.0})
+    for (double off : {1e-3, 1e-6, -1e-3, 0.0}) {
+      const double p[2] = {(1 + off) * std::cos(t), (1 + off) * 0.5 * std::sin(t)};
+      const ChartEnclosure C = ChartEnclosure::at(F, p);
+      const ChartEnclosure::BasePoint b = C.base_point(F);
+      ASSERT_TRUE(b.certified) << t << " " << off;
+      // p* = p + h n on the normal line (the chart's Nn column): the root of a quadratic nearest 0.
+      const double n0 = C.normal(0, 0).get_d(), n1 = C.normal(1, 0).get_d();
+      const double A = n0 * n0 + 4 * n1 * n1, B = 2 * (p[0] * n0 + 4 * p[1] * n1),
+                   c = p[0] * p[0] + 4 * p[1] * p[1] - 1, disc = std::sqrt(B * B - 4 * A * c);
+      const double h = std::abs(-B + disc) < std::abs(-B - disc) ? (-B + disc) / (2 * A) : (-B - disc) / (2 * A);
+      const double s0 = p[0] + h * n0, s1 = p[1] + h * n1;
+      const double dist = std::abs(h) * std::hypot(n0, n1);
+      // The tangents: perpendicular to (x1, 4 x2) at p (the chart's) and at p* (M's).
+      const double cross = p[0] * 4 * s1 - 4 * p[1] * s0;
+      const double true_sin = std::abs(cross) / (std::hypot(p[0], 4 * p[1]) * std::hypot(s0, 4 * s1));
+      EXPECT_GE(b.distance, dist * (1 - 1e-9)) << t << " " << off;
+      EXPECT_LE(b.distance, 2 * dist + 1e-8) << t << " " << off;
+      EXPECT_GE(b.sin_tilt, true_sin * (1 - 1e-6)) << t << " " << off;
+      EXPECT_LE(b.sin_tilt, 20 * true_sin + 1e-8) << t << " " << off;
+      for (int v = 0; v < 2; ++v) EXPECT_TRUE(b.x[v].lo <= (v ? s1 : s0) + 1e-12 && (v ? s1 : s0) - 1e-12 <= b.x[v].hi);
+      const Polynomial pos = Polynomial::parse("x1 + 10", 2), neg = Polynomial::parse("x1 - 10", 2);
+      EXPECT_TRUE(C.base_point(F, &pos).certified);
+      EXPECT_FALSE(C.base_point(F, &neg).certified);
+    }
+}
+
+TEST(Chart, BasePointOnSO3) {
+  const ImplicitSystem F = builtin("so3");
+  const Polynomial det = Polynomial::parse("x1*x5*x9 - x1*x6*x8 - x2*x4*x9 + x2*x6*x7 + x3*x4*x8 - x3*x5*x7", 9);
+  testing::Rng rng(14);
+  const testing::TestManifold so3 = testing::test_manifolds().back();
+  const std::vector<double> id = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const ChartEnclosure::BasePoint at_id = ChartEnclosure::at(F, id).base_point(F, &det);
+  ASSERT_TRUE(at_id.certified);
+  EXPECT_LT(at_id.sin_tilt, 1e-7);  // on SO(3): only the tiny box U0 (2^-30 wide) and rounding
+  for (int t = 0; t < 4; ++t) {
+    const std::vector<double> p = testing::sample_near(so3, rng);  // rounded: off SO(3) by ~1e-16
+    const ChartEnclosure C = ChartEnclosure::at(F, p);
+    const ChartEnclosure::BasePoint b = C.base_point(F, &det);
+    ASSERT_TRUE(b.certified);
+    EXPECT_LT(b.sin_tilt, 1e-7);
+    EXPECT_LT(b.distance, 1e-7);
+    const Polynomial minus = -det;  // the other component: never certified
+    EXPECT_FALSE(C.base_point(F, &minus).certified);
+  }
+}
+
 TEST(Chart, AdversarialMagnitudesAreCorrectOrUndecided) {
   for (double r : {1e-300, 1e-150, 1e150, 1e300}) {
     int unique = 0, total = 0;
