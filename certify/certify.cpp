@@ -204,7 +204,7 @@ struct Stars {
 };
 
 Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings& S, int threads,
-                    std::vector<exact::FilterContext>& ctx) {
+                    std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress) {
   const std::size_t n = S.points->size();
   const int m = S.m;
   Stars st;
@@ -223,6 +223,7 @@ Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings&
   st.reports.resize(n);
   detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &st.claimed[p] : nullptr, ctx[w]);
+    if (progress) progress->add();
   });
   st.complex.num_vertices = n;
   if (given) {
@@ -504,7 +505,7 @@ void report_unclaimed(CheckEntry& e) {
 // measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
-                                  bool stars_are_the_complex) {
+                                  bool stars_are_the_complex, io::ProgressLine* progress) {
   CheckEntry secure(CheckId::secure_simplices);
   if (claimed)
     secure.claim = {{"secure", true},
@@ -525,6 +526,7 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
     std::vector<Simplex> st;
     for (const auto& c : reports[p].star) st.push_back(c.simplex);
     sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
+    if (progress) progress->add();
   });
   long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0;
   std::map<std::string, long> reasons;
@@ -966,13 +968,16 @@ Certificate run_certify(const CertifyOptions& o) {
   const bool tangential_kind = in.given && !restricted_kind && !intrinsic_kind;
   C.parameters["kind"] = !in.given ? "audit" : restricted_kind ? "restricted" : intrinsic_kind ? "intrinsic" : "tangential";
 
+  const auto phase = [&](const char* label, std::size_t total = 0) { if (o.progress) o.progress->phase(label, total); };
   Stopwatch watch;
+  phase("check 1 input_sanity");
   SanityResult sanity = check_input_sanity(spec, P, in.point_lines, o.points, restricted_kind, threads);
   watch.record(C, "input_sanity");
   // Points off M (accepted only for a restricted claim) have no tangent space: no Del_TM.
   const bool on_M = sanity.off_manifold.empty();
   const exact::ImplicitSystem system(spec.equations, N);
   const detail::PointGrid grid(P, m);
+  phase("check 2 sparsity");
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
 
@@ -982,7 +987,8 @@ Certificate run_certify(const CertifyOptions& o) {
   std::optional<ProtectionResult> protection;
   std::optional<RadiusResult> radius;
   if (on_M) {
-    stars = analyse_stars(tangential_kind ? in.given : std::nullopt, S, threads, ctx);
+    phase("check 3 stars", P.size());
+    stars = analyse_stars(tangential_kind ? in.given : std::nullopt, S, threads, ctx, o.progress);
     watch.record(C, "stars");
     stars_entry = check_stars(*stars, m);
     consistency = check_consistency(*stars, S, ctx_consistency);
@@ -1006,11 +1012,13 @@ Certificate run_certify(const CertifyOptions& o) {
   std::vector<Simplex> lattice_simplices;
   for (const auto& s : K.simplices)
     if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
+  phase("check 5 thickness");
   const FaceLattice lattice = face_lattice(lattice_simplices);
   ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
                                          o.force_exact);
   watch.record(C, "thickness");
 
+  phase("check 8 topology");
   CheckEntry topology = check_topology(K, m, lattice, spec.expected);
   watch.record(C, "topology");
 
@@ -1029,6 +1037,8 @@ Certificate run_certify(const CertifyOptions& o) {
     // costs 2k searches of a k-dimensional slab; in codimension 1 that is cheap and assumes nothing.
     if (spec.reach && N - m >= 2) ro.cell.reach = sqrt_lower(spec.reach->squared);
     ro.cell.selector = spec.selector ? &*spec.selector : nullptr;
+    phase("checks 11-13 restricted Voronoi cells");
+    if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
     covering = check_covering(*R, claims.covering, spec);
     restricted = check_restricted(*R, in.given, restricted_kind, m);
@@ -1051,7 +1061,9 @@ Certificate run_certify(const CertifyOptions& o) {
     if (R && covering->verdict == Verdict::certified)
       meas.covering = exact::to_rational(std::nextafter(R->covering, INFINITY));
     const TheoremParams tp = theorem_parameters(meas);
-    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind);
+    phase("check 7 secure_simplices", P.size());
+    secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind,
+                                    o.progress);
     theorem = theorem_report(tp, spec);
     watch.record(C, "secure_and_theorem");
   }
@@ -1074,11 +1086,13 @@ Certificate run_certify(const CertifyOptions& o) {
           std::sort(s.begin(), s.end());
           if (std::adjacent_find(s.begin(), s.end()) == s.end()) candidates.push_back(s);
         }
+    phase("checks 14-15 intrinsic Delaunay");
     const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
     intrinsic = check_intrinsic(D, in.given, intrinsic_kind, !restricted_kind, m);
     equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D, !restricted_kind && !intrinsic_kind);
   }
   watch.record(C, "intrinsic_delaunay");
+  if (o.progress) o.progress->clear();
 
   for (auto& c : ctx) C.filter.merge(c.stats);
   C.filter.merge(ctx_sparsity.stats);

@@ -25,6 +25,7 @@
 
 #include "certify/certificate.hpp"
 #include "io/input_error.hpp"
+#include "io/progress.hpp"
 
 namespace delcert::certify {
 
@@ -48,6 +49,7 @@ struct CertifyOptions {
   // every cell in exact rationals). For differential tests: the certificate must be the same
   // apart from the filter statistics and the times.
   bool force_exact = false;
+  io::ProgressLine* progress = nullptr;  // a line on a terminal: the phases (presentation, never read back)
 };
 
 // Throws io::InputError on bad input (exit status 2); never writes anything.

@@ -17,6 +17,7 @@
 #include "exact/interval.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/progress.hpp"
 #include "io/spec.hpp"
 #include "report/html_report.hpp"  // presentation only: reads the finished certificate
 
@@ -75,6 +76,8 @@ int main(int argc, char** argv) {
     if (!report_path.empty() && !report::viewer_available())
       return std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n", 2;
     if (!report_path.empty()) io::check_output_path(report_path, "--report", {o.manifold, o.points, o.complex, o.claims}, {out});
+    io::ProgressLine progress = io::ProgressLine::on_stderr();  // on a terminal only; cleared before any output
+    o.progress = &progress;
     certify::Certificate cert = certify::run_certify(o);
     std::vector<std::pair<std::string, std::string>> files;
     if (!out.empty()) files.emplace_back(out, cert.to_text(!no_times));

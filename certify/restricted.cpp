@@ -79,6 +79,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
         R.cells[todo[begin + i]] = cells[i]->second_pass(target);
         cells[i].reset();
       });
+      if (o.progress) o.progress(begin + count, todo.size());
     }
     R.rounds_used = round + 1;
     double c = 0;

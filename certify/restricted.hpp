@@ -37,6 +37,7 @@
 // would mean the program contradicts itself, and makes the result incomplete.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ struct RestrictedDelaunayOptions {
   int threads = 1;
   int rounds = 4;    // radius increases after the first analysis
   RestrictedCellOptions cell;  // graph_radius is set per round
+  std::function<void(std::size_t, std::size_t)> progress;  // (cells done, cells of the round); for a progress line
 };
 
 struct RestrictedSimplex {

@@ -4,6 +4,8 @@
 #   lib/libdelcert_{exact,io,certify,topology}.a     the libraries of the certifier (not delcert_core)
 #   include/delcert/{exact,io,certify}/...           their headers, included as "exact/x.hpp"
 #   lib/cmake/delcert/                               the package config: find_package(delcert)
+#   DELCERT_PYTHON_INSTALL_DIR/delcert.*.so           the Python module, when built (python/CMakeLists.txt;
+#                                                    lib/python3.11/dist-packages with Debian's python3)
 #
 # find_package(delcert) gives delcert::exact, delcert::io and delcert::certify (each bringing what
 # it links), the programs as delcert::delcert and delcert::delcert-certify, and the function

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Configures and builds delcert into build/ (Release). Extra arguments go to cmake's configure step.
+# Configures and builds delcert into build/ (Release). Arguments go to cmake's configure step; names
+# after "--" are the targets to build (default: everything, every test and benchmark included):
+#   bash scripts/build.sh -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -- delcert delcert-certify
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=${JOBS:-$(nproc)}
@@ -11,5 +13,14 @@ if [ -n "${DELCERT_WERROR:-}" ]; then werror=(-DDELCERT_WERROR="$DELCERT_WERROR"
 # -DPython3_EXECUTABLE=... among the arguments picks another.
 python=()
 if [ -x /usr/bin/python3 ]; then python=(-DPython3_EXECUTABLE=/usr/bin/python3); fi
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "${python[@]}" "$@" >/dev/null
-cmake --build build -j "$JOBS"
+configure=() targets=()
+while [ $# -gt 0 ]; do
+  if [ "$1" = "--" ]; then shift; targets=("$@"); break; fi
+  configure+=("$1"); shift
+done
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "${python[@]}" "${configure[@]}" >/dev/null
+if [ ${#targets[@]} -gt 0 ]; then
+  cmake --build build -j "$JOBS" --target "${targets[@]}"
+else
+  cmake --build build -j "$JOBS"
+fi

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <limits>
 
 #include "core/refine/parameters.hpp"
@@ -114,6 +116,18 @@ CLI::Validator thread_count() {
       "; give 0 (one thread per hardware thread) or a thread count from 1 to " + std::to_string(kMaxThreads);
   return CLI::Validator([give](std::string& input) { return check_whole(input, kMaxThreads, give); },
                         "0.." + std::to_string(kMaxThreads), "THREADS");
+}
+
+std::function<void(const char*, int, std::size_t, std::size_t)> eps_net_progress(io::ProgressLine& line) {
+  if (!line.terminal()) return {};
+  auto last = std::make_shared<std::pair<std::string, int>>();
+  return [&line, last](const char* phase, int pass, std::size_t done, std::size_t total) {
+    if (last->first != phase || last->second != pass) {
+      *last = {phase, pass};
+      line.phase(std::string(phase) + ", pass " + std::to_string(pass), total);
+    }
+    line.update(done);
+  };
 }
 
 double eps_option(const std::string& text) { return refine::parse_eps_option(text).value.get_d(); }

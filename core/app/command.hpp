@@ -12,6 +12,7 @@
 #include "core/sampling/sampling.hpp"
 #include "io/complex.hpp"
 #include "io/points.hpp"
+#include "io/progress.hpp"
 
 namespace delcert::app {
 
@@ -65,6 +66,11 @@ void check_mesh_dimensions(const std::string& path, int m, int N);
 std::string mesh_out_text(const std::string& path, const io::PointSet& points, const io::Complex& complex);
 inline constexpr const char* kMeshOutHelp =
     "also write the complex as a surface mesh, OFF or PLY by the extension (.off, .ply); m = 2, N = 3 only (written atomically)";
+
+// Progress lines (issue 13 §5): each command draws one on stderr when it is a terminal
+// (io::ProgressLine::on_stderr(), silent otherwise; outputs never depend on it). This feeds it the
+// phases of sampling::eps_net (EpsNetOptions::progress); empty when the line is not shown.
+std::function<void(const char*, int, std::size_t, std::size_t)> eps_net_progress(io::ProgressLine& line);
 
 Command add_sample_command(CLI::App& app);
 Command add_tangential_command(CLI::App& app);

@@ -18,8 +18,6 @@
 //              claimed protection δ̌^2 = δ0^2 (ε/9)^2;
 //   ε when only --points is given: two significant digits above the input's largest R_p, so
 //              that Rule 1 has nothing to do at the start.
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -50,6 +48,17 @@ struct RefineArgs {
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_inserted = 0, max_rounds = 0;
 };
+
+// "round 12: 3456 points (+456); pending 3 big, 40 inconsistent": the rules with configurations
+// pending, short enough for the progress line.
+std::string round_progress_label(const refine::RefineProgress& p) {
+  std::string s = "round " + std::to_string(p.round) + ": " + std::to_string(p.points) + " points (+" +
+                  std::to_string(p.inserted) + ")";
+  const char* sep = "; pending ";
+  for (refine::Rule rule : refine::kRules)
+    if (p.pending[rule]) s += sep + std::to_string(p.pending[rule]) + " " + refine::to_string(rule), sep = ", ";
+  return s;
+}
 
 int run_refine(const RefineArgs& a) {
   const auto started = std::chrono::steady_clock::now();
@@ -98,21 +107,22 @@ int run_refine(const RefineArgs& a) {
     eo.eps = refine::as_doubles(params.constants).eps;
     eo.seed = a.seed;
     check_eps_net_size(manifold, eo);
+    io::ProgressLine progress = io::ProgressLine::on_stderr();
+    eo.progress = eps_net_progress(progress);
     auto net = sampling::eps_net(manifold, eo);
     manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
     input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text + " --seed " + std::to_string(a.seed) + ")";
   }
 
-  const bool tty = isatty(STDERR_FILENO);
-  if (tty)
-    params.progress = [](const refine::RefineProgress& p) {
-      using refine::Rule;
-      std::fprintf(stderr, "\rround %zu: %zu points (+%zu); pending big %zu, bad %zu, bad cosph %zu, unprotected %zu, inconsistent %zu   ",
-                   p.round, p.points, p.inserted, p.pending[Rule::big], p.pending[Rule::bad_star], p.pending[Rule::bad_cosph],
-                   p.pending[Rule::unprotected], p.pending[Rule::inconsistent]);
-      std::fflush(stderr);
-    };
+  // The progress line: one phase per round (points, and the configurations pending per rule), its
+  // count the stars being recomputed.
+  io::ProgressLine progress = io::ProgressLine::on_stderr();
+  if (progress.terminal()) {
+    params.progress = [&progress](const refine::RefineProgress& p) { progress.phase(round_progress_label(p)); };
+    params.star_progress = [&progress](std::size_t done, std::size_t total) { progress.update(done, total); };
+  }
+  progress.phase("stars of the " + std::to_string(input.size()) + " input points");
   refine::RefineResult result;
   try {
     result = refine::refine(manifold, input, params);
@@ -121,7 +131,7 @@ int run_refine(const RefineArgs& a) {
   } catch (const std::domain_error& e) {
     throw io::InputError(a.points.empty() ? std::string("delcert refine") : a.points, 0, e.what());
   }
-  if (tty) std::fprintf(stderr, "\n");
+  progress.clear();
 
   refine::OutputContext ctx;
   ctx.manifold = manifold.spec().name;

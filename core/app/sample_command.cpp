@@ -25,7 +25,10 @@ int run_sample(const SampleArgs& a) {
   options.seed = a.seed;
   io::check_output_path(a.out, "--out", {a.manifold});
   check_eps_net_size(manifold, options);
+  io::ProgressLine progress = io::ProgressLine::on_stderr();
+  options.progress = eps_net_progress(progress);
   auto net = sampling::eps_net(manifold, options);
+  progress.clear();
   manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
   io::write_points(a.out, net.points);
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), manifold.intrinsic_dimension(),

@@ -3,8 +3,6 @@
 //
 // Builds the tangential Delaunay complex of the points (docs/design.md §3.2) with T_p = p + ker J_F(p),
 // writes the union of the stars (maximal simplices, sorted) and, on request, a JSON summary.
-#include <unistd.h>
-
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -35,9 +33,6 @@ struct TangentialArgs {
   std::string manifold, points, out, stats, mesh_out;
   int threads = 0;
 };
-
-// Inputs at least this large get a progress bar (when stderr is a terminal).
-constexpr std::size_t kProgressThreshold = 20000;
 
 class Stopwatch {
  public:
@@ -74,6 +69,8 @@ int run_tangential(const TangentialArgs& a) {
   times["read"] = clock.lap();
 
   const int threads = support::resolve_threads(a.threads);
+  io::ProgressLine progress = io::ProgressLine::on_stderr();
+  progress.phase("tangent planes");
   tangential::TangentPlanes planes;
   try {
     planes = tangential::compute_tangent_planes(manifold, points, threads);
@@ -84,18 +81,8 @@ int run_tangential(const TangentialArgs& a) {
 
   tangential::StarOptions options;
   options.threads = threads;
-  const bool show_progress = isatty(STDERR_FILENO) && points.size() >= kProgressThreshold;
-  int shown = -1;
-  if (show_progress)
-    options.progress = [&shown](std::size_t done, std::size_t total) {
-      const int percent = static_cast<int>(100 * done / std::max<std::size_t>(total, 1));
-      if (percent == shown) return;
-      shown = percent;
-      std::string bar(percent / 2, '#');
-      bar.resize(50, ' ');
-      std::fprintf(stderr, "\rstars [%s] %3d%%", bar.c_str(), percent);
-      std::fflush(stderr);
-    };
+  if (progress.terminal()) options.progress = [&progress](std::size_t done, std::size_t total) { progress.update(done, total); };
+  progress.phase("stars", points.size());
   tangential::StarStats star_stats;
   tangential::TangentialComplex complex;
   try {
@@ -103,13 +90,15 @@ int run_tangential(const TangentialArgs& a) {
   } catch (const std::invalid_argument& e) {  // e.g. two identical points
     throw io::InputError(a.points, 0, e.what());
   }
-  if (show_progress) std::fprintf(stderr, "\n");
   times["stars"] = clock.lap();
 
+  progress.phase("assembling the complex");
   tangential::Assembly assembly = complex.assemble(threads);
   times["assemble"] = clock.lap();
+  progress.phase("topology");
   tangential::ComplexTopology topology = tangential::analyze_complex(assembly.complex);
   times["analyze"] = clock.lap();
+  progress.clear();
 
   std::vector<std::pair<std::string, std::string>> outputs{{a.out, io::format_complex(assembly.complex)}};
   if (!a.mesh_out.empty()) outputs.emplace_back(a.mesh_out, mesh_out_text(a.mesh_out, points, assembly.complex));

@@ -458,6 +458,7 @@ std::vector<std::size_t> Refiner::cosph_affected(std::size_t round_start) const 
 RefineResult Refiner::run() {
   const auto t_start = Clock::now();
   star_options_.threads = P_.threads;
+  star_options_.progress = P_.star_progress;
   {
     const auto t = Clock::now();
     planes_ = tangential::compute_tangent_planes(M_, R_.points, P_.threads);
@@ -597,6 +598,7 @@ RefineResult Refiner::run() {
   measure();
   R_.parameters = P_;
   R_.parameters.progress = nullptr;
+  R_.parameters.star_progress = nullptr;
   R_.total_seconds = seconds_since(t_start);
   return std::move(R_);
 }

@@ -67,6 +67,9 @@ struct RefineParameters {
   double time_limit = 0;
   // Called after every round (from the calling thread).
   std::function<void(const RefineProgress&)> progress;
+  // Called with (stars done, stars to compute) while stars are computed: all of them at the start,
+  // then those a round's insertions changed (tangential::StarOptions::progress). For a progress line.
+  std::function<void(std::size_t, std::size_t)> star_progress;
 };
 
 struct RuleStats {
@@ -125,7 +128,7 @@ struct RefineResult {
   double total_seconds = 0;
   FinalMeasures final;
   HypothesesReport hypotheses;
-  RefineParameters parameters;   // as used: caps and attempts resolved, ε and δ0 set, no progress callback
+  RefineParameters parameters;   // as used: caps and attempts resolved, ε and δ0 set, no progress callbacks
 };
 
 // Refines `input` (points on M) with the given parameters. Throws std::invalid_argument on bad

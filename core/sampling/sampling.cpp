@@ -69,7 +69,8 @@ void sample_shape(const io::ShapeSpec& sh, int N, Random& rng, std::vector<doubl
 
 }  // namespace
 
-void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& rng, io::PointSet& out) {
+void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& rng, io::PointSet& out,
+                     const std::function<void(std::size_t)>& on_point) {
   const auto& spec = manifold.spec();
   const int N = manifold.ambient_dimension();
   out.dimension = N;
@@ -79,6 +80,7 @@ void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Rand
     for (std::size_t i = 0; i < count; ++i) {
       sample_shape(*spec.parametrization, N, rng, p);
       out.push_back(p);
+      if (on_point) on_point(i + 1);
     }
     return;
   }
@@ -98,10 +100,12 @@ void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Rand
     if (!inside) continue;
     out.push_back(manifold::as_span(*z));
     ++produced;
+    if (on_point) on_point(produced);
   }
 }
 
-std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius) {
+std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius,
+                                                  const std::function<void(std::size_t)>& on_select) {
   const std::size_t n = dense.size();
   std::vector<std::size_t> selected;
   if (!n) {
@@ -119,6 +123,7 @@ std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, dou
   double radius2 = std::numeric_limits<double>::infinity();
   for (;;) {
     selected.push_back(next);
+    if (on_select) on_select(selected.size());
     auto q = dense.point(next);
     // Every point is within radius2 of the selection, so only points within radius2 of the new
     // point can get closer.
@@ -151,8 +156,15 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
   std::vector<std::size_t> selected;
   double cover = 0;
   for (int round = 0; round < 6; ++round) {
-    sample_manifold(manifold, target - dense.size(), rng, dense);
-    selected = farthest_point_selection(dense, options.eps, &cover);
+    std::function<void(std::size_t)> on_point, on_select;
+    if (options.progress) {
+      const std::size_t before = dense.size();
+      options.progress("dense sample", round + 1, before, target);
+      on_point = [&, before, round](std::size_t k) { options.progress("dense sample", round + 1, before + k, target); };
+      on_select = [&, round](std::size_t k) { options.progress("net extraction", round + 1, k, 0); };
+    }
+    sample_manifold(manifold, target - dense.size(), rng, dense, on_point);
+    selected = farthest_point_selection(dense, options.eps, &cover, on_select);
     auto wanted = static_cast<std::size_t>(options.oversampling * static_cast<double>(selected.size()));
     wanted = std::min(std::max(wanted, options.min_dense), options.max_dense);
     if (wanted <= dense.size() * 11 / 10) break;  // dense enough: within 10% of the target

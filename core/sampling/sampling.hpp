@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/random.hpp"
@@ -12,8 +13,10 @@ namespace delcert::sampling {
 // Appends `count` random points of M to `out`. Built-in shapes (the spec's "parametrization")
 // are sampled through their parametrisation, uniformly with respect to volume. Any other spec:
 // uniform points of its bounding box projected onto M (not volume-uniform; failures retried).
-// Throws std::runtime_error if a generic spec yields no projectable points.
-void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& random, io::PointSet& out);
+// Throws std::runtime_error if a generic spec yields no projectable points. `on_point`, when
+// given, is called after each point with the number of points appended so far (for a progress line).
+void sample_manifold(const manifold::Manifold& manifold, std::size_t count, Random& random, io::PointSet& out,
+                     const std::function<void(std::size_t)>& on_point = {});
 
 struct EpsNetOptions {
   double eps = 0.25;
@@ -22,6 +25,10 @@ struct EpsNetOptions {
   double oversampling = 30;
   std::size_t min_dense = 4000;
   std::size_t max_dense = 4'000'000;
+  // For a progress line, never changing the result: called with (phase, round, done, total) as the
+  // dense sample grows ("dense sample", round 1 to 6, points so far, its target size) and during
+  // each farthest-point selection ("net extraction", round, points selected so far, total 0).
+  std::function<void(const char*, int, std::size_t, std::size_t)> progress;
 };
 
 struct EpsNetResult {
@@ -50,7 +57,9 @@ EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNet
 
 // Farthest-point selection on a given point set: indices of the selected points, in order,
 // starting from point 0, until the farthest remaining point is closer than eps. Also returns
-// the final covering radius of the selection over `dense`.
-std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius);
+// the final covering radius of the selection over `dense`. `on_select`, when given, is called
+// with the number of points selected so far, after each one.
+std::vector<std::size_t> farthest_point_selection(const io::PointSet& dense, double eps, double* covering_radius,
+                                                  const std::function<void(std::size_t)>& on_select = {});
 
 }  // namespace delcert::sampling

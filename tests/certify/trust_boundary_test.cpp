@@ -28,6 +28,9 @@ const std::vector<std::string> kAllowedInCertify = {"certify/",       "exact/", 
                                                     // main.cpp only: --report hands the finished certificate to
                                                     // the HTML writer (presentation, no verdict; design.md §5)
                                                     "report/html_report.hpp",
+                                                    // the progress line on a terminal (presentation, no
+                                                    // verdict: writes to stderr only, nothing read back)
+                                                    "io/progress.hpp",
                                                     "topology/"};
 const std::vector<std::string> kAllowedInIo = {"io/", "exact/"};
 // topology/ includes itself and Regina only: nothing of core/, certify/, exact/, io/, no CGAL.
