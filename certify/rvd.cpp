@@ -467,10 +467,13 @@ class CellAnalysis {
       // takes over.
       double widest_u = 0;
       for (const auto& i : w.U) widest_u = std::max(widest_u, i.width());
+      // THE GRAPH LEMMA: ch.H, Krawczyk's contraction, holds every point of M ∩ B(p, r) over U, and
+      // exactly one point of {F = 0} over each u: it is the slab as it stands (cut to Hpar).
+      const bool lemma = ch.status == exact::ChartStatus::unique && graph_lemma(w.U, ch.H, room);
       Box Hc = ch.H;
-      if (ch.status == exact::ChartStatus::unique && graph_lemma(w.U, Hc, room)) {
+      if (lemma) {
         if (!intersect(Hc, H)) return discard();  // no point of M ∩ B(p, r) over U in Hpar
-        chart_slab = true, ++report_.reach_slabs;
+        H = std::move(Hc), chart_slab = unique_slab = true, ++report_.reach_slabs;
       }
       for (int attempt = 0; attempt < 2 && !chart_slab && ch.status == exact::ChartStatus::unique; ++attempt) {
         Hc = ch.H;
@@ -481,17 +484,18 @@ class CellAnalysis {
           i = Interval{(IA(i.lo) - d).inf(), (IA(i.hi) + d).sup()};
         }
         chart_slab = intersect(Hc, H) && difference_excluded(w.U, H, Hc, w.S);
+        if (chart_slab) {
+          // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
+          // lies in its contraction, which is then the slab (tight covering bounds and signs).
+          // (Parametric Krawczyk: whatever its status, its box holds every root in Hc of every u in U;
+          // `none`: there is none, and the box is free of M.)
+          const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
+          if (tight.status == exact::ChartStatus::none) return discard();
+          H = tight.H;
+          unique_slab = tight.status == exact::ChartStatus::unique;
+        }
       }
-      if (chart_slab) {
-        // Krawczyk on the widened slab: when it proves one point of M over each u in it, that point
-        // lies in its contraction, which is then the slab (tight covering bounds and signs).
-        // (Parametric Krawczyk: whatever its status, its box holds every root in Hc of every u in U;
-        // `none`: there is none, and the box is free of M.)
-        const exact::ChartResult tight = chart_.enclose_in(w.U, Hc);
-        if (tight.status == exact::ChartStatus::none) return discard();
-        H = tight.H;
-        unique_slab = tight.status == exact::ChartStatus::unique;
-      } else {
+      if (!chart_slab) {
         ++report_.chart_failures;
         if (excluded(w.U, H, w.S, opt_.normal_levels)) return discard();
       }

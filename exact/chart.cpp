@@ -273,8 +273,11 @@ bool guess_slab(const ChartEnclosure::Impl& S, const Box& U, std::span<const dou
   }
   double floor_scale = max_abs(h0) + rad_u;
   if (floor_scale == 0) floor_scale = max_abs(S.p);
+  // A side far thinner than the others fails Krawczyk: the coupling of the wide sides (the
+  // enclosure of I - Y J_h times their radii) alone exceeds its radius. No side below 1/8 of the widest.
+  const double widest = *std::max_element(r.begin(), r.end());
   for (int i = 0; i < k; ++i) {
-    r[i] = S.options.safety * r[i] + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
+    r[i] = S.options.safety * std::max(r[i], 0.125 * widest) + 0x1.0p-30 * floor_scale + 0x1.0p-1000;
     if (!std::isfinite(r[i])) return false;
   }
   return true;
