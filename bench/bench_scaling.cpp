@@ -276,7 +276,7 @@ int main(int argc, char** argv) {
       e["tangential"] = entry(run({producer, "tangential", "--manifold", spec, "--points", points, "--out", cx, "--threads", T}), n);
     }
     if (wants("refine")) {
-      if (n > refine_up_to) e["refine"] = json{{"skipped", "n > --refine-up-to"}};
+      if (c.count > refine_up_to) e["refine"] = json{{"skipped", "n > --refine-up-to"}};
       else if (!std::filesystem::exists(net)) e["refine"] = json{{"skipped", "no eps-net from delcert sample"}};
       else {
         std::fprintf(stderr, "bench_scaling: %s %zu: delcert refine\n", c.manifold.c_str(), c.count);
@@ -286,7 +286,7 @@ int main(int argc, char** argv) {
       }
     }
     if (wants("certify") && std::filesystem::exists(cx)) {
-      const bool skip = n > restricted_up_to;
+      const bool skip = c.count > restricted_up_to;  // the case size asked for (the grid gives about n)
       std::fprintf(stderr, "bench_scaling: %s %zu: delcert-certify%s\n", c.manifold.c_str(), c.count,
                    skip ? " --skip-restricted" : "");
       std::vector<std::string> args = {checker, "--manifold", spec, "--points", points, "--complex", cx,
