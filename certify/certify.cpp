@@ -196,10 +196,10 @@ json parameters_json(const Inputs& in) {
 
 struct Stars {
   bool verify = false;                        // a complex was given (else: audit mode)
-  std::vector<std::vector<Simplex>> claimed;  // per point: the given m-simplices at it, sorted
+  std::vector<std::vector<Simplex>> claimed;  // per point: the given m-simplices at it, sorted (freed once verified)
   std::vector<Simplex> wrong_dimension;       // given simplices of another dimension, sorted
   std::vector<StarReport> reports;            // per point: star(p), exactly or why not
-  io::Complex complex;        // what the global checks look at: the given complex or the union of the stars
+  io::Complex complex;        // audit mode: the union of the stars, what the global checks look at
   std::vector<Simplex> tops;  // its m-simplices, each sorted (given: in file order; audit: sorted, unique)
 };
 
@@ -224,10 +224,9 @@ Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings&
   detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &st.claimed[p] : nullptr, ctx[w]);
     if (progress) progress->add();
+    if (st.reports[p].claimed_verified) std::vector<Simplex>().swap(st.claimed[p]);  // reports[p].star holds them
   });
-  st.complex.num_vertices = n;
-  if (given) {
-    st.complex = *given;
+  if (given) {  // (the global checks read *given itself)
     for (const auto& s0 : given->simplices)
       if (static_cast<int>(s0.size()) == m + 1) {
         Simplex s = s0;
@@ -239,7 +238,7 @@ Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings&
       for (const auto& c : r.star) st.tops.push_back(c.simplex);
     std::sort(st.tops.begin(), st.tops.end());
     st.tops.erase(std::unique(st.tops.begin(), st.tops.end()), st.tops.end());
-    st.complex.simplices = st.tops;
+    st.complex.num_vertices = n, st.complex.simplices = st.tops;
   }
   return st;
 }
@@ -777,9 +776,7 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
   std::set<Simplex> tm;
   long unknown_stars = 0;
   for (const auto& r : st.reports) {
-    if (r.claimed_verified) {
-      tm.insert(st.claimed[r.p].begin(), st.claimed[r.p].end());
-    } else if (r.state == StarReport::State::proven) {
+    if (r.state == StarReport::State::proven) {  // (claimed_verified: star holds the claimed cells)
       for (const auto& c : r.star) tm.insert(c.simplex);
     } else {
       ++unknown_stars;
@@ -938,12 +935,13 @@ Certificate run_certify(const CertifyOptions& o) {
   Certificate C;
   const int threads = std::max(1, o.threads);
 
-  const Inputs in = read_inputs(o);
+  Inputs in = read_inputs(o);
   const io::ManifoldSpec& spec = in.spec;
   const io::PointSet& P = in.points;
   const io::Claims& claims = in.claims;
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
   C.inputs = inputs_json(in, o);
+  std::string().swap(in.points_text), std::string().swap(in.complex_text);  // hashed: not read again
   C.conventions = conventions_json();
   C.parameters = parameters_json(in);
 
@@ -1008,12 +1006,13 @@ Certificate run_certify(const CertifyOptions& o) {
 
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by check 3 (wrong
   // dimension, with the simplex as witness); their 2^n faces are never enumerated (a 32-vertex simplex would hang).
-  const io::Complex& K = tangential_kind || !in.given ? stars->complex : *in.given;  // what checks 5 and 8 look at
-  std::vector<Simplex> lattice_simplices;
-  for (const auto& s : K.simplices)
-    if (static_cast<int>(s.size()) <= m + 1) lattice_simplices.push_back(s);
+  const io::Complex& K = in.given ? *in.given : stars->complex;  // what checks 5 and 8 look at
+  auto fits = [&](const Simplex& s) { return static_cast<int>(s.size()) <= m + 1; };
+  const bool all_fit = std::all_of(K.simplices.begin(), K.simplices.end(), fits);
+  std::vector<Simplex> fitting;  // a copy only when some simplex is too large
+  if (!all_fit) std::copy_if(K.simplices.begin(), K.simplices.end(), std::back_inserter(fitting), fits);
   phase("check 5 thickness");
-  const FaceLattice lattice = face_lattice(lattice_simplices);
+  const FaceLattice lattice = face_lattice(all_fit ? K.simplices : fitting);
   ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
                                          o.force_exact);
   watch.record(C, "thickness");

@@ -612,14 +612,14 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
       if (missing_vertex && grow(kOpenStarRadiusGrowth * r)) continue;  // cannot happen with r >= kClaimedVertexRadiusFactor |v - p|; kept as a guard
       Verification V = verify(S, L, lists, ctx);
       if (V.need_radius > r && grow(V.need_radius)) continue;
-      out.claimed = V.cells;
       out.link_problem = V.link_problem;
-      if (all_empty(V) && V.link_ok) {
+      if (all_empty(V) && V.link_ok) {  // one copy of the cells: `claimed` is read only for stars not verified
         out.claimed_verified = true;
-        out.star = V.cells;
+        out.star = std::move(V.cells), out.claimed.clear();
         out.state = StarReport::State::proven;
         return out;
       }
+      out.claimed = V.cells;
       for (std::size_t k = 0; k < lists.size() && !seed; ++k)
         if (V.cells[k].empty()) seed = lists[k];  // a strictly empty ball: a true cell of star(p)
     }

@@ -79,7 +79,7 @@ struct StarReport {
   std::string reason;               // why not proven
   bool claimed_verified = false;    // the claimed star at p is proven to be star(p)
   std::vector<CellReport> star;     // the cells of star(p) (best effort when not proven)
-  std::vector<CellReport> claimed;  // each claimed m-simplex at p, tested at p
+  std::vector<CellReport> claimed;  // each claimed m-simplex at p, tested at p (empty when claimed_verified)
   std::string link_problem;         // why the claimed star is not a closed star, if so
   double search_radius = 0;         // every point within this distance of p was tested
   // Enclosures of the exact tangent basis U (N x m) and of G = U^T U (m x m) at p, for check 7.

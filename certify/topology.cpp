@@ -540,6 +540,7 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
     for (auto t = a + 1; t < b; ++t) R.strong_components -= uf.unite(a->second, t->second);
     a = b;
   }
+  std::vector<std::vector<int>>().swap(tops), decltype(ridge_of)().swap(ridge_of);  // freed before the links and Betti numbers
   // Vertex links.
   std::vector<std::vector<long>> incident(K.num_vertices);
   for (std::size_t j = 0; j < K.simplices.size(); ++j)
