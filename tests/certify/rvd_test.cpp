@@ -5,6 +5,7 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "exact/number_types.hpp"
 #include "io/points.hpp"
+#include "io/spec.hpp"
 #include "support.hpp"
 
 namespace delcert::certify::test {
@@ -320,6 +322,87 @@ TEST(RestrictedCell, GraphLemmaChangesTheWorkNotTheAnswer) {
     }
     EXPECT_GT(slabs, 0);
   }
+}
+
+// A well-spread sample of SO(3) in R^9: random unit quaternions (seeded) kept greedily at least
+// `min_dist` apart, as row-major rotation matrices (rounded: off SO(3) by ~1e-16).
+io::PointSet so3_net(int candidates, double min_dist, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<std::vector<double>> pts;
+  for (int c = 0; c < candidates; ++c) {
+    double q[4], n = 0;
+    do {
+      n = 0;
+      for (double& x : q) x = 2 * rng.uniform() - 1, n += x * x;
+    } while (n > 1 || n < 1e-3);
+    for (double& x : q) x /= std::sqrt(n);
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    std::vector<double> R = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                             2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                             2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+    bool far = true;
+    for (const auto& P : pts) {
+      double d = 0;
+      for (int i = 0; i < 9; ++i) d += (P[i] - R[i]) * (P[i] - R[i]);
+      far = far && d >= min_dist * min_dist;
+    }
+    if (far) pts.push_back(std::move(R));
+  }
+  return make_points(9, pts);
+}
+
+TEST(RestrictedCell, SO3CellsWithTheGraphLemma) {
+  // SO(3), codimension 6 (reach sqrt 2, det > 0 selects it from O(3)): without the graph lemma no
+  // cell ever finished (the other sheets are not excluded by interval signs in a 6-dimensional
+  // slab). With it: the cells of p = 0 and of the other points of its first vertex complete, find
+  // that vertex, and every vertex of p's cell re-checks in double from its enclosure (on SO(3),
+  // equidistant from its simplex, every other point farther).
+  const io::PointSet P = so3_net(2500, 0.45, 31);
+  ASSERT_GT(P.size(), 300u);
+  const io::ManifoldSpec spec = io::read_spec("builtin:so3");
+  const exact::ImplicitSystem F(spec.equations, 9);
+  const detail::PointGrid grid(P, 3);
+  RestrictedCellOptions opt;
+  opt.graph_radius = 0.9;
+  opt.reach = std::sqrt(2.0) * (1 - 1e-15);
+  opt.selector = &*spec.selector;
+  const RestrictedCellReport a = analyse_restricted_cell(F, P, grid, 0, opt);
+  ASSERT_TRUE(a.complete) << a.reason;
+  EXPECT_GT(a.reach_slabs, 0);
+  ASSERT_GE(a.vertices.size(), 4u);
+  for (const auto& v : a.vertices) {
+    std::vector<double> x(9);
+    double width = 0;
+    for (int i = 0; i < 9; ++i) x[i] = v.x[i].midpoint(), width = std::max(width, v.x[i].width());
+    EXPECT_LT(width, 1e-6);
+    const double Rx[9] = {x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], x[8]};
+    for (int i = 0; i < 3; ++i)  // R^T R = I
+      for (int j = 0; j < 3; ++j) {
+        double s = 0;
+        for (int k = 0; k < 3; ++k) s += Rx[3 * k + i] * Rx[3 * k + j];
+        EXPECT_NEAR(s, i == j ? 1 : 0, 1e-6);
+      }
+    auto dist = [&](int q) {
+      double d = 0;
+      for (int i = 0; i < 9; ++i) d += (P.point(q)[i] - x[i]) * (P.point(q)[i] - x[i]);
+      return std::sqrt(d);
+    };
+    const double d0 = dist(v.simplex[0]);
+    for (int q : v.simplex) EXPECT_NEAR(dist(q), d0, 1e-6);
+    for (int q = 0; q < static_cast<int>(P.size()); ++q) {
+      if (std::binary_search(v.simplex.begin(), v.simplex.end(), q)) continue;
+      EXPECT_GT(dist(q), d0 + 1e-9) << q;
+    }
+  }
+  const std::vector<int> first = a.vertices[0].simplex;
+  for (int q : first) {
+    if (q == 0) continue;
+    const RestrictedCellReport b = analyse_restricted_cell(F, P, grid, q, opt);
+    ASSERT_TRUE(b.complete) << q << ": " << b.reason;
+    EXPECT_TRUE(std::any_of(b.vertices.begin(), b.vertices.end(), [&](const auto& w) { return w.simplex == first; })) << q;
+  }
+  std::printf("[ so3 ] %zu points; cell 0: %zu vertices, %ld boxes, %ld slabs from the graph lemma\n", P.size(),
+              a.vertices.size(), a.boxes, a.reach_slabs);
 }
 
 TEST(RestrictedCell, AVertexOnASplitPlaneIsDecided) {
