@@ -1032,9 +1032,9 @@ Certificate run_certify(const CertifyOptions& o) {
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
-    // THE GRAPH LEMMA (rvd.cpp) in codimension >= 2 only, where excluding the other sheets box by box
-    // costs 2k searches of a k-dimensional slab; in codimension 1 that is cheap and assumes nothing.
-    if (spec.reach && N - m >= 2) ro.cell.reach = sqrt_lower(spec.reach->squared);
+    // THE GRAPH LEMMA (rvd.cpp) in codimension >= 4 only, where excluding the other sheets box by box
+    // (2k searches of a k-dimensional slab) never ends (SO(3)); below, it is as fast and assumes nothing.
+    if (spec.reach && N - m >= 4) ro.cell.reach = sqrt_lower(spec.reach->squared);
     ro.cell.selector = spec.selector ? &*spec.selector : nullptr;
     phase("checks 11-13 restricted Voronoi cells");
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
