@@ -168,6 +168,44 @@ TEST(RestrictedChecks, MutantsOfARestrictedMeshAreNeverCertified) {
 
 // A sample with a hole: every point within angle 0.7 of the north pole removed. The covering
 // bound is at least the distance from the pole to the nearest point.
+TEST(RestrictedChecks, TheReachIsAnAssumptionStatedWhereTheGraphLemmaIsUsed) {
+  // The flat torus S^1 x S^1 in R^6 with x5 = x6 = 0: codimension 4, where a declared reach lets
+  // THE GRAPH LEMMA (certify/rvd.cpp) take chart slabs. With the reach, check 11 must say that it
+  // assumed it; without it, that nothing was assumed. The same Del_RM and both certified.
+  TempDir dir("reach");
+  io::PointSet T = torus2_lattice(12, 14, 0.3, 9);
+  std::vector<std::vector<double>> pts;
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    std::vector<double> x(T.point(i).begin(), T.point(i).end());
+    x.push_back(0), x.push_back(0);
+    pts.push_back(std::move(x));
+  }
+  const io::PointSet P = make_points(6, pts);
+  auto spec = [&](bool reach) {
+    const std::string path = dir.file(reach ? "with.json" : "without.json");
+    write_text(path, std::string(R"({"format": "delcert-manifold v1", "name": "flat-torus-in-r6", "intrinsic_dimension": 2,
+ "ambient_dimension": 6, "equations": ["x1^2 + x2^2 - 1", "x3^2 + x4^2 - 1", "x5", "x6"],)") +
+                         (reach ? R"( "reach": {"value": "1", "kind": "exact"},)" : "") +
+                         R"( "bounding_box": [["-1.25", "1.25"], ["-1.25", "1.25"], ["-1.25", "1.25"], ["-1.25", "1.25"],
+ ["-1", "1"], ["-1", "1"]], "expected": {"euler_characteristic": 0, "betti_z2": [1, 2, 1]}})");
+    return path;
+  };
+  const Certificate with = certify_points(spec(true), P, dir), without = certify_points(spec(false), P, dir);
+  const CheckEntry& cw = check(with, CheckId::covering);
+  const CheckEntry& co = check(without, CheckId::covering);
+  ASSERT_EQ(cw.verdict, Verdict::certified) << with.to_text(false);
+  ASSERT_EQ(co.verdict, Verdict::certified) << without.to_text(false);
+  const std::string charts_with = cw.details["assumptions"]["charts"], charts_without = co.details["assumptions"]["charts"];
+  EXPECT_NE(charts_with.find("the reach of M is at least 1"), std::string::npos) << charts_with;
+  EXPECT_EQ(charts_without.find("none: no reach"), 0u) << charts_without;
+  EXPECT_EQ(check(with, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_EQ(check(without, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_EQ(check(with, CheckId::restricted_delaunay).details["m_simplices"],
+            check(without, CheckId::restricted_delaunay).details["m_simplices"]);
+  EXPECT_EQ(check(with, CheckId::tangential_equals_restricted).verdict,
+            check(without, CheckId::tangential_equals_restricted).verdict);
+}
+
 TEST(RestrictedChecks, CoveringBoundSeesAHole) {
   TempDir dir("restricted-hole");
   const io::PointSet all = fibonacci_sphere(300);
