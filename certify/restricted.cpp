@@ -91,7 +91,12 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
       if ((reaches || !(c < cell.graph_radius)) && radius[p] < r_cap) again.push_back(p);
     }
     if (again.empty() || round >= o.rounds) break;
-    for (int p : again) radius[p] = std::min(r_cap, std::max(2 * radius[p], 1.5 * c));
+    // With THE GRAPH LEMMA, up to 0.95 reach first (beyond it the lemma fails near p and cells are slow).
+    const double lemma_cap = 0.95 * o.cell.reach;
+    for (int p : again) {
+      const double next = std::min(r_cap, std::max(2 * radius[p], 1.5 * c));
+      radius[p] = radius[p] < lemma_cap ? std::min(next, lemma_cap) : next;
+    }
     todo = std::move(again);
   }
 
