@@ -11,6 +11,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <regex>
 #include <thread>
 
 #include "certify/certify.hpp"
@@ -53,8 +54,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version: exit 0
     return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
+  } catch (const CLI::ParseError& e) {  // CLI11 echoes the value: a number of 300 digits is cut to 20
+    std::cerr << std::regex_replace(e.what(), std::regex("([0-9]{20})[0-9]{5,}"), "$1...") << "\n"
+              << "Run with --help for more information.\n";
     return 2;
   }
   if (!kind.empty())

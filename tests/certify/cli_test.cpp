@@ -161,6 +161,10 @@ TEST(Cli, ThreadsDefaultToAllCoresAndRefusalsAreShort) {
     EXPECT_NE(r.err.find("--threads: Value " + std::string(bad) + " not in range 0 to 256\n"), std::string::npos)
         << r.err;
   }
+  RunResult r = run(base + " --threads " + std::string(300, '9'), dir);  // not echoed whole
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--threads: Value 99999999999999999999..."), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), 200u) << r.err;
 }
 
 // Each input is read once, and the certificate hashes exactly the bytes that were checked. A FIFO
