@@ -231,6 +231,7 @@ py::array_t<double> py_sample(const py::object& manifold_arg, double eps, std::u
     sampling::EpsNetOptions options;
     options.eps = eps;
     options.seed = seed;
+    sampling::check_eps_net_size(manifold, options);  // as `delcert sample`: refuse a run that cannot end
     auto net = sampling::eps_net(manifold, options);
     manifold::check_sample_on_manifold(manifold, net.points, source);
     return std::move(net.points);
@@ -352,6 +353,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
       sampling::EpsNetOptions eo;
       eo.eps = refine::as_doubles(params.constants).eps;
       eo.seed = seed;
+      sampling::check_eps_net_size(manifold, eo);  // as `delcert refine --eps`: refuse a run that cannot end
       auto net = sampling::eps_net(manifold, eo);
       manifold::check_sample_on_manifold(manifold, net.points, source);
       input = std::move(net.points);

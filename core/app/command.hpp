@@ -48,11 +48,6 @@ std::string threads_help();
 // --eps as `sample` and `refine` take it: a decimal or a fraction (refine::parse_rational_option),
 // > 0, with a positive finite double; returns that double. Throws io::InputError naming --eps.
 double eps_option(const std::string& text);
-// Before an eps-net is sampled (sample, refine without --points): refuses (io::InputError on
-// --eps) an eps whose net would need a dense sample beyond options.max_dense (the selection could
-// not give an eps-net, and would run for hours), naming the smallest eps that fits; warns on
-// stderr beyond 10^6 dense points. By sampling::estimate_eps_net (a pilot, seeded).
-void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options);
 // --mesh-out FILE.off|FILE.ply of `tangential` and `refine`: the complex as a surface mesh that any
 // mesh viewer (and delcert-certify) opens. check_mesh_out runs before any work: the extension
 // names the format, the path must be writable and no input; check_mesh_dimensions refuses

@@ -106,7 +106,7 @@ int run_refine(const RefineArgs& a) {
     sampling::EpsNetOptions eo;
     eo.eps = refine::as_doubles(params.constants).eps;
     eo.seed = a.seed;
-    check_eps_net_size(manifold, eo);
+    sampling::check_eps_net_size(manifold, eo);
     io::ProgressLine progress = io::ProgressLine::on_stderr();
     eo.progress = eps_net_progress(progress);
     auto net = sampling::eps_net(manifold, eo);

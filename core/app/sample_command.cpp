@@ -24,7 +24,7 @@ int run_sample(const SampleArgs& a) {
   options.eps = eps_option(a.eps);
   options.seed = a.seed;
   io::check_output_path(a.out, "--out", {a.manifold});
-  check_eps_net_size(manifold, options);
+  sampling::check_eps_net_size(manifold, options);
   io::ProgressLine progress = io::ProgressLine::on_stderr();
   options.progress = eps_net_progress(progress);
   auto net = sampling::eps_net(manifold, options);

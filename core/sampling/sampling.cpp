@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 
 #include <limits>
 #include <numbers>
@@ -209,6 +210,23 @@ EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNet
   e.eps_at_cap = eps * std::pow(options.oversampling * static_cast<double>(k) / static_cast<double>(options.max_dense), 1 / m);
   e.dense_points = std::max(options.oversampling * e.net_points, static_cast<double>(options.min_dense));
   return e;
+}
+
+void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options) {
+  const sampling::EpsNetEstimate e = sampling::estimate_eps_net(manifold, options);
+  const double cap = static_cast<double>(options.max_dense);
+  if (e.dense_points > cap) {
+    char dense[32], msg[400];
+    std::snprintf(dense, sizeof dense, std::isfinite(e.dense_points) ? "about %.3g" : "more than 1e308", e.dense_points);
+    std::snprintf(msg, sizeof msg,
+                  "%g is too small for this command: its eps-net needs a dense sample of %s points, more than the cap "
+                  "of %.3g; give eps >= %.2g",
+                  options.eps, dense, cap, e.eps_at_cap);
+    throw io::InputError("--eps", 0, msg);
+  }
+  if (e.dense_points > 1e6)
+    std::fprintf(stderr, "warning: eps %g: an eps-net of about %.3g points from a dense sample of about %.3g points; "
+                 "this takes a while\n", options.eps, e.net_points, e.dense_points);
 }
 
 }  // namespace delcert::sampling

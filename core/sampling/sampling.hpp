@@ -54,6 +54,11 @@ struct EpsNetEstimate {
   double eps_at_cap = 0;    // about the eps whose dense sample is max_dense points
 };
 EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options);
+// Before an eps-net is sampled (sample, refine without points, and the Python module's): refuses
+// (io::InputError on --eps) an eps whose net would need a dense sample beyond options.max_dense
+// (the selection could not give an eps-net, and would run for hours), naming the smallest eps that
+// fits; warns on stderr beyond 10^6 dense points. By estimate_eps_net (a pilot, seeded).
+void check_eps_net_size(const manifold::Manifold& manifold, const EpsNetOptions& options);
 
 // Farthest-point selection on a given point set: indices of the selected points, in order,
 // starting from point 0, until the farthest remaining point is closer than eps. Also returns

@@ -178,6 +178,11 @@ def test_bad_arrays_are_refused(sphere_net):
         delcert.tangential("builtin:sphere-2", off)
     with pytest.raises(delcert.InputError, match="eps: 0.0 is not positive"):
         delcert.sample("builtin:sphere-2", eps=0.0)
+    # An eps whose eps-net could not end is refused before any sampling, as on the command line.
+    with pytest.raises(delcert.InputError, match="too small for this command.*give eps >="):
+        delcert.sample("builtin:sphere-2", eps=1e-5)
+    with pytest.raises(delcert.InputError, match="too small for this command.*give eps >="):
+        delcert.refine("builtin:sphere-2", eps=1e-5)
     with pytest.raises(delcert.InputError, match="threads"):
         delcert.certify("builtin:sphere-2", sphere_net, threads=1000)
     with pytest.raises(delcert.InputError, match="kind needs complex"):
