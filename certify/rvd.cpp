@@ -378,8 +378,8 @@ class CellAnalysis {
     return excluded(U, H, S, levels - 1) && excluded(U, H2, S, levels - 1);
   }
 
-  // THE GRAPH LEMMA. Hypothesis: tau = options.reach <= reach(M). base_ (exact::ChartEnclosure::
-  // base_point): p* in M, |p* - p| <= delta, sin θ(span T, T_{p*} M) <= sigma. Claim: when the chart
+  // THE GRAPH LEMMA. Hypothesis: tau = options.reach <= reach(M). exact::ChartEnclosure::base_point
+  // (in the constructor): p* in M, |p* - p| <= delta, sin θ(span T, T_{p*} M) <= sigma. Claim: when the chart
   // proves exactly one point x(u) of {F = 0} in U x Hc for every u in U, s > 0 on that box's image,
   // and sqrt(r^2 - inf_U |T u|^2) + sup_Hc |Nn h| <= 2 tau cos Θ, Θ = 2 arcsin((r + delta) / (2 tau))
   // + arcsin sigma, then x(u) is the only point of M ∩ B(p, r) over u (Hc holds them all: THE SLAB
