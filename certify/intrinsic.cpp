@@ -35,9 +35,53 @@ exact::Polynomial sphere_polynomial(const std::vector<int>& vars, const std::vec
 // The declared metric is used only when the equations are exactly those of the declared shape
 // (up to nonzero rational factors and order): then M is that shape, and the closed-form geodesic
 // distance is M's own. Otherwise the declaration is not trusted.
+// The equations of SO(3): the rows (or the columns) of x1..x9 (row-major) orthonormal.
+std::vector<exact::Polynomial> so3_polynomials(bool rows, int N) {
+  auto x = [&](int i, int j) { return exact::Polynomial::variable(rows ? 3 * i + j : 3 * j + i, N); };
+  std::vector<exact::Polynomial> e;
+  for (int i = 0; i < 3; ++i)
+    for (int k = i; k < 3; ++k)
+      e.push_back(x(i, 0) * x(k, 0) + x(i, 1) * x(k, 1) + x(i, 2) * x(k, 2) -
+                  exact::Polynomial::constant(mpq_class(i == k), N));
+  return e;
+}
+
+// Each equation proportional to a distinct one of `expected`, "" when so.
+std::string unmatched(const std::vector<exact::Polynomial>& equations, const std::vector<exact::Polynomial>& expected) {
+  if (equations.size() != expected.size()) return "the spec has another number of equations than its metric";
+  std::vector<bool> used(expected.size(), false);
+  for (std::size_t i = 0; i < equations.size(); ++i) {
+    bool found = false;
+    for (std::size_t j = 0; j < expected.size() && !found; ++j)
+      if (!used[j] && proportional(equations[i], expected[j])) used[j] = found = true;
+    if (!found)
+      return "equation " + std::to_string(i + 1) + " is not (a multiple of) an equation of the declared metric's shape";
+  }
+  return "";
+}
+
+// The declared metric is used only when the equations are exactly those of the declared shape
+// (up to nonzero rational factors and order): then M is that shape, and the closed-form geodesic
+// distance is M's own. Otherwise the declaration is not trusted.
 std::string metric_mismatch(const io::ManifoldSpec& spec) {
   const io::ShapeSpec& g = *spec.metric;
   const int N = spec.ambient_dimension;
+  if (g.kind == io::ShapeSpec::Kind::so3) {
+    // O(3) has two components; M is SO(3) only with a selector that is a positive multiple of det.
+    const std::string by_rows = unmatched(spec.equations, so3_polynomials(true, N));
+    if (!by_rows.empty() && !unmatched(spec.equations, so3_polynomials(false, N)).empty()) return by_rows;
+    auto x = [&](int i, int j) { return exact::Polynomial::variable(3 * i + j, N); };
+    const exact::Polynomial det = x(0, 0) * (x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1)) -
+                                  x(0, 1) * (x(1, 0) * x(2, 2) - x(1, 2) * x(2, 0)) +
+                                  x(0, 2) * (x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0));
+    if (!spec.selector || !proportional(*spec.selector, det))
+      return "the selector is not a multiple of the determinant: M may be O(3), or its other component";
+    const exact::Term& t = det.terms().front();
+    for (const exact::Term& s : spec.selector->terms())
+      if (s.monomial == t.monomial && sgn(s.coefficient) * sgn(t.coefficient) < 0)
+        return "the selector is a negative multiple of the determinant: M is the component det = -1, not SO(3)";
+    return "";
+  }
   std::vector<exact::Polynomial> expected;
   if (g.kind == io::ShapeSpec::Kind::sphere) {
     std::vector<int> vars(N);
@@ -47,15 +91,8 @@ std::string metric_mismatch(const io::ManifoldSpec& spec) {
     for (std::size_t i = 0; i < g.radii.size(); ++i)
       expected.push_back(sphere_polynomial({int(2 * i), int(2 * i + 1)}, {0, 0}, g.radii[i], N));
   }
-  if (spec.equations.size() != expected.size()) return "the spec has another number of equations than its metric";
-  std::vector<bool> used(expected.size(), false);
-  for (std::size_t i = 0; i < spec.equations.size(); ++i) {
-    bool found = false;
-    for (std::size_t j = 0; j < expected.size() && !found; ++j)
-      if (!used[j] && proportional(spec.equations[i], expected[j])) used[j] = found = true;
-    if (!found)
-      return "equation " + std::to_string(i + 1) + " is not (a multiple of) an equation of the declared metric's shape";
-  }
+  const std::string why = unmatched(spec.equations, expected);
+  if (!why.empty()) return why;
   if (spec.selector) return "the spec has a selector: M may be only a component of the declared shape";
   return "";
 }
@@ -80,15 +117,17 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
   const io::ShapeSpec& g = *spec.metric;
   const bool sphere = g.kind == io::ShapeSpec::Kind::sphere && N == m + 1;
   const bool torus = g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m && static_cast<int>(g.radii.size()) == m;
-  if (sphere || torus) {
+  const bool so3 = g.kind == io::ShapeSpec::Kind::so3 && N == 9 && m == 3;
+  if (sphere || torus || so3) {
     const std::string mismatch = metric_mismatch(spec);
     if (!mismatch.empty()) {
-      D.metric = sphere ? "sphere" : "product_of_circles";
+      D.metric = sphere ? "sphere" : torus ? "product_of_circles" : "so3";
       D.reason = "the declared metric is not used: " + mismatch;
       return D;
     }
     return sphere ? detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads)
-                  : detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads);
+           : torus ? detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads)
+                   : detail::intrinsic_delaunay_so3(points, grid, candidates, threads);
   }
   D.metric = g.kind == io::ShapeSpec::Kind::so3 ? "so3"
              : g.kind == io::ShapeSpec::Kind::sphere ? "sphere"

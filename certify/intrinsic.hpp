@@ -3,13 +3,15 @@
 // the spec declares a closed-form metric (io::ShapeSpec in `metric`):
 //   * sphere (M a round hypersphere, m = N - 1): certify/intrinsic_sphere.cpp;
 //   * product_of_circles (a flat torus, N = 2m): certify/intrinsic_torus.cpp;
+//   * so3 (SO(3) in R^9, the Frobenius metric): certify/intrinsic_so3.cpp;
 //   * anything else: not computed, with the reason (no closed-form geodesic distance, or a metric
 //     this version does not handle yet).
 //
 // POINTS NEAR M. d_M(x, p) is defined for x, p in M; the sample's points are doubles, only near
 // M. Convention (stated in the certificate): d_M(x, p) := d_M(x, pi(p)), pi the nearest-point
 // projection onto M in closed form for the supported metrics (sphere: the radial projection
-// from the centre; product of circles: the radial projection within each coordinate plane).
+// from the centre; product of circles: the radial projection within each coordinate plane;
+// SO(3): the nearest rotation, certified as an eigenvector).
 // So Del_M(P) := Del_M(pi(P)). The projections are irrational; every predicate on them is
 // evaluated in certified arithmetic (exact rationals where possible, MPFI enclosures otherwise)
 // and a sign that the enclosure cannot decide leaves the simplex UNDECIDED: ties are "not
@@ -51,7 +53,7 @@ struct IntrinsicUndecided {
 
 struct IntrinsicDelaunay {
   bool computed = false;          // a supported closed-form metric; otherwise `reason` says why not
-  std::string metric;             // "sphere", "product_of_circles", or "" (none declared)
+  std::string metric;             // "sphere", "product_of_circles", "so3", or "" (none declared)
   std::string convention;         // how d_M(x, p) is defined for p near M (see above), for the certificate
   std::string completeness;       // the completeness argument used, for the certificate
   std::vector<IntrinsicSimplex> simplices;   // certified m-simplices of Del_M(P), sorted by simplex, unique

@@ -20,4 +20,8 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
                                                 const PointGrid& grid, const std::vector<std::vector<int>>& candidates,
                                                 int threads);
 
+// M = SO(3) in R^9 (x1..x9 row-major), the Frobenius metric (certify/intrinsic_so3.cpp).
+IntrinsicDelaunay intrinsic_delaunay_so3(const io::PointSet& points, const PointGrid& grid,
+                                         const std::vector<std::vector<int>>& candidates, int threads);
+
 }  // namespace delcert::certify::detail

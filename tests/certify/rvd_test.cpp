@@ -324,33 +324,6 @@ TEST(RestrictedCell, GraphLemmaChangesTheWorkNotTheAnswer) {
   }
 }
 
-// A well-spread sample of SO(3) in R^9: random unit quaternions (seeded) kept greedily at least
-// `min_dist` apart, as row-major rotation matrices (rounded: off SO(3) by ~1e-16).
-io::PointSet so3_net(int candidates, double min_dist, std::uint64_t seed) {
-  Rng rng(seed);
-  std::vector<std::vector<double>> pts;
-  for (int c = 0; c < candidates; ++c) {
-    double q[4], n = 0;
-    do {
-      n = 0;
-      for (double& x : q) x = 2 * rng.uniform() - 1, n += x * x;
-    } while (n > 1 || n < 1e-3);
-    for (double& x : q) x /= std::sqrt(n);
-    const double w = q[0], x = q[1], y = q[2], z = q[3];
-    std::vector<double> R = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
-                             2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                             2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
-    bool far = true;
-    for (const auto& P : pts) {
-      double d = 0;
-      for (int i = 0; i < 9; ++i) d += (P[i] - R[i]) * (P[i] - R[i]);
-      far = far && d >= min_dist * min_dist;
-    }
-    if (far) pts.push_back(std::move(R));
-  }
-  return make_points(9, pts);
-}
-
 TEST(RestrictedCell, SO3CellsWithTheGraphLemma) {
   // SO(3), codimension 6 (reach sqrt 2, det > 0 selects it from O(3)): without the graph lemma no
   // cell ever finished (the other sheets are not excluded by interval signs in a 6-dimensional

@@ -106,6 +106,37 @@ inline io::PointSet spread_sphere(int d, int n, double min_dist, std::uint64_t s
   return make_points(d, pts);
 }
 
+// A well-spread sample of SO(3) in R^9: random unit quaternions (seeded) kept greedily at least
+// `min_dist` apart, as row-major rotation matrices (rounded: off SO(3) by ~1e-16).
+// `quaternions` (optional) receives each kept point's unit quaternion (w, x, y, z).
+inline io::PointSet so3_net(int candidates, double min_dist, std::uint64_t seed,
+                            std::vector<std::array<double, 4>>* quaternions = nullptr) {
+  Rng rng(seed);
+  std::vector<std::vector<double>> pts;
+  for (int c = 0; c < candidates; ++c) {
+    double q[4], n = 0;
+    do {
+      n = 0;
+      for (double& x : q) x = 2 * rng.uniform() - 1, n += x * x;
+    } while (n > 1 || n < 1e-3);
+    for (double& x : q) x /= std::sqrt(n);
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    std::vector<double> R = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                             2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                             2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+    bool far = true;
+    for (const auto& P : pts) {
+      double d = 0;
+      for (int i = 0; i < 9; ++i) d += (P[i] - R[i]) * (P[i] - R[i]);
+      far = far && d >= min_dist * min_dist;
+    }
+    if (!far) continue;
+    pts.push_back(std::move(R));
+    if (quaternions) quaternions->push_back({w, x, y, z});
+  }
+  return make_points(9, pts);
+}
+
 // A near-equilateral triangular lattice on the flat torus S^1 x S^1 in R^4: `cols` points per
 // row, `rows` rows (even), odd rows shifted by half a step; each angle jittered by up to
 // `jitter` steps (seeded) so that no three projected points are exactly collinear.
