@@ -126,7 +126,24 @@ Lift lift(std::span<const double> point) {
   std::array<mpq_class, 9> p;
   mpq_class norm2 = 0;
   for (int i = 0; i < 9; ++i) p[i] = exact::to_rational(point[i]), norm2 += p[i] * p[i];
-  const Mat4 B = davenport(p);
+  // B scaled by a power of two bringing its largest entry into [1/2, 4): exact, and it moves
+  // no eigenvector and scales rho, U2 and |r| alike (S is invariant), so no magnitude of p
+  // (10^-308 .. 10^308) underflows or overflows the enclosures below; rho is scaled back exactly.
+  Mat4 B = davenport(p);
+  mpq_class largest = 0;
+  for (const auto& row : B)
+    for (const auto& x : row) largest = std::max(largest, mpq_class(abs(x)));
+  if (sgn(largest) == 0) {
+    L.failure = "the largest eigenvalue of B(p) is not certified simple (p = 0: every rotation is nearest)";
+    return L;
+  }
+  int exponent = 0;  // largest.get_d() is nonzero and finite or +inf (below 2^1026: |p_ij| <= DBL_MAX)
+  std::frexp(std::min(largest.get_d(), 0x1p1023), &exponent);
+  mpq_class scale = 1;
+  if (exponent > 0) mpz_mul_2exp(scale.get_den_mpz_t(), scale.get_den_mpz_t(), exponent);
+  else mpz_mul_2exp(scale.get_num_mpz_t(), scale.get_num_mpz_t(), -exponent);
+  for (auto& row : B)
+    for (auto& x : row) x *= scale;
   const std::array<double, 4> v = top_eigenvector(B);
   std::array<mpq_class, 4> w;
   for (int i = 0; i < 4; ++i) w[i] = exact::to_rational(v[0] < 0 ? -v[i] : v[i]);
@@ -179,7 +196,7 @@ Lift lift(std::span<const double> point) {
     L.q[j] = iv(hj) + IntervalNumber(-e, e);
     L.approx[j] = hj.get_d();
   }
-  L.delta = exact::sqrt(iv(3 + norm2 - 2 * rho)).sup();  // 3 + |p|^2 - 2 rho >= |p - pi(p)|^2 >= 0
+  L.delta = exact::sqrt(iv(3 + norm2 - 2 * rho / scale)).sup();  // >= |p - pi(p)|^2 >= 0 (unscaled)
   if (!std::isfinite(L.delta)) L.failure = "its distance to SO(3) overflows";
   return L;
 }

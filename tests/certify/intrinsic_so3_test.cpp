@@ -179,6 +179,28 @@ TEST(IntrinsicSO3, ScalingMovesNoProjection) {
   ASSERT_TRUE(D.computed) << D.reason;
   EXPECT_TRUE(D.complete) << D.reason;
   EXPECT_EQ(simplices(D), truth);
+  // Adversarial magnitudes: every point scaled by 2^k (exact in binary). The enclosures work on
+  // B scaled back to [1/2, 1); the distances to SO(3) (about |p|) only widen the test radius.
+  // Beyond 2^511, |p|^2 overflows a double: the engine stops and says so, never guesses.
+  for (int k : {-1000, -300, 300, 500, 600}) {
+    SCOPED_TRACE(k);
+    io::PointSet T;
+    T.dimension = 9;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      std::vector<double> x(9);
+      for (int j = 0; j < 9; ++j) x[j] = std::ldexp(P.point(i)[j], k);
+      T.push_back(x);
+    }
+    const IntrinsicDelaunay E = del_m(spec, T, {*truth.begin()});
+    if (k == 600) {
+      EXPECT_FALSE(E.computed);
+      EXPECT_NE(E.reason.find("overflows"), std::string::npos) << E.reason;
+      continue;
+    }
+    ASSERT_TRUE(E.computed) << E.reason;
+    EXPECT_TRUE(E.complete) << E.reason;
+    EXPECT_EQ(simplices(E), truth);
+  }
 }
 
 // The 12 rotations of the tetrahedral group (rational, exactly on SO(3)) lift to the 24 vertices
