@@ -1,5 +1,6 @@
 #include "certify/intrinsic.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -63,8 +64,7 @@ std::string unmatched(const std::vector<exact::Polynomial>& equations, const std
 // The declared metric is used only when the equations are exactly those of the declared shape
 // (up to nonzero rational factors and order): then M is that shape, and the closed-form geodesic
 // distance is M's own. Otherwise the declaration is not trusted.
-std::string metric_mismatch(const io::ManifoldSpec& spec) {
-  const io::ShapeSpec& g = *spec.metric;
+std::string metric_mismatch(const io::ManifoldSpec& spec, const io::ShapeSpec& g) {
   const int N = spec.ambient_dimension;
   if (g.kind == io::ShapeSpec::Kind::so3) {
     // O(3) has two components; M is SO(3) only with a selector that is a positive multiple of det.
@@ -114,12 +114,44 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
     D.reason = "no closed-form geodesic distance: the spec declares no metric";
     return D;
   }
-  const io::ShapeSpec& g = *spec.metric;
+  // A product whose factors are one shape this version handles, written as that shape: one sphere
+  // or one SO(3) on x1..xN in order, or circles on (x1, x2), (x3, x4), ... in order.
+  io::ShapeSpec g = *spec.metric;
+  if (g.kind == io::ShapeSpec::Kind::product) {
+    auto in_order = [](const std::vector<io::ShapeFactor>& fs) {
+      int next = 0;
+      for (const auto& f : fs)
+        for (int x : f.coordinates)
+          if (x != next++) return false;
+      return true;
+    };
+    const bool circles = std::all_of(g.factors.begin(), g.factors.end(), [](const io::ShapeFactor& f) {
+      return f.kind == io::ShapeFactor::Kind::sphere && f.coordinates.size() == 2;
+    });
+    std::string factors;
+    for (const auto& f : g.factors)
+      factors += (factors.empty() ? "" : " x ") +
+                 (f.kind == io::ShapeFactor::Kind::so3 ? std::string("SO(3)") : "S^" + std::to_string(f.dimension()));
+    if (in_order(g.factors) && g.factors.size() == 1 && g.factors[0].kind == io::ShapeFactor::Kind::sphere) {
+      g.kind = io::ShapeSpec::Kind::sphere, g.center.assign(N, mpq_class(0)), g.radius = g.factors[0].radius;
+    } else if (in_order(g.factors) && g.factors.size() == 1) {
+      g.kind = io::ShapeSpec::Kind::so3;
+    } else if (in_order(g.factors) && circles) {
+      g.kind = io::ShapeSpec::Kind::product_of_circles;
+      for (const auto& f : g.factors) g.radii.push_back(f.radius);
+    } else {
+      D.metric = "product";
+      D.reason = "Del_M for the product " + factors +
+                 (circles ? " (circles not on the coordinate pairs (x1, x2), (x3, x4), ... in order)" : "") +
+                 " is not built in this version (docs/design.md §12)";
+      return D;
+    }
+  }
   const bool sphere = g.kind == io::ShapeSpec::Kind::sphere && N == m + 1;
   const bool torus = g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m && static_cast<int>(g.radii.size()) == m;
   const bool so3 = g.kind == io::ShapeSpec::Kind::so3 && N == 9 && m == 3;
   if (sphere || torus || so3) {
-    const std::string mismatch = metric_mismatch(spec);
+    const std::string mismatch = metric_mismatch(spec, g);
     if (!mismatch.empty()) {
       D.metric = sphere ? "sphere" : torus ? "product_of_circles" : "so3";
       D.reason = "the declared metric is not used: " + mismatch;

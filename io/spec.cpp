@@ -128,8 +128,52 @@ ShapeSpec get_shape(const json& v, const std::string& field, const char* kind_ke
     only_keys(v, field, {kind_key}, c);
     sh.kind = ShapeSpec::Kind::so3;
     if (m != 3 || N != 9) c.fail(field, "so3 has intrinsic dimension 3 in R^9");
+  } else if (kind == "product") {
+    only_keys(v, field, {kind_key, "factors"}, c);
+    sh.kind = ShapeSpec::Kind::product;
+    const json& fs = require(v, "factors", c, field);
+    if (!fs.is_array() || fs.empty()) c.fail(at("factors"), "expected a non-empty array of factors");
+    std::vector<bool> used(N, false);
+    int dimension = 0;
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const std::string f = detail::json_element_path(at("factors"), i);
+      const json& fv = fs[i];
+      if (!fv.is_object()) c.fail(f, "expected {\"type\": \"sphere\" or \"so3\", \"coordinates\": [...], ...}");
+      const std::string type = get_string(require(fv, "type", c, f), detail::json_member_path(f, "type"), c);
+      ShapeFactor factor;
+      if (type == "sphere") {
+        only_keys(fv, f, {"type", "coordinates", "radius"}, c);
+        factor.radius = get_rational(require(fv, "radius", c, f), detail::json_member_path(f, "radius"), c);
+        if (factor.radius <= 0) c.fail(detail::json_member_path(f, "radius"), "must be positive");
+      } else if (type == "so3") {
+        only_keys(fv, f, {"type", "coordinates"}, c);
+        factor.kind = ShapeFactor::Kind::so3;
+      } else {
+        c.fail(detail::json_member_path(f, "type"), "unknown factor type '" + type + "'; known: sphere, so3");
+      }
+      const std::string cf = detail::json_member_path(f, "coordinates");
+      const json& cv = require(fv, "coordinates", c, f);
+      if (!cv.is_array()) c.fail(cf, "expected an array of coordinate numbers 1..N");
+      for (std::size_t k = 0; k < cv.size(); ++k) {
+        const int x = static_cast<int>(get_int(cv[k], detail::json_element_path(cf, k), c, 1, N)) - 1;
+        if (used[x]) c.fail(detail::json_element_path(cf, k), "coordinate x" + std::to_string(x + 1) + " is already in a factor");
+        used[x] = true;
+        factor.coordinates.push_back(x);
+      }
+      if (factor.kind == ShapeFactor::Kind::sphere && factor.coordinates.size() < 2)
+        c.fail(cf, "a sphere factor needs at least 2 coordinates (a circle)");
+      if (factor.kind == ShapeFactor::Kind::so3 && factor.coordinates.size() != 9)
+        c.fail(cf, "an so3 factor needs 9 coordinates (a rotation matrix, row-major)");
+      dimension += factor.dimension();
+      sh.factors.push_back(std::move(factor));
+    }
+    for (int x = 0; x < N; ++x)
+      if (!used[x]) c.fail(at("factors"), "coordinate x" + std::to_string(x + 1) + " is in no factor; the factors must cover x1..xN");
+    if (dimension != m)
+      c.fail(at("factors"), "the factors' dimensions add up to " + std::to_string(dimension) + ", not the intrinsic dimension " +
+                                std::to_string(m));
   } else {
-    c.fail(at(kind_key), "unknown kind '" + kind + "'; known: sphere, product_of_circles, torus_of_revolution, so3");
+    c.fail(at(kind_key), "unknown kind '" + kind + "'; known: sphere, product_of_circles, torus_of_revolution, so3, product");
   }
   return sh;
 }

@@ -11,6 +11,10 @@
 //     "metric": {"type": "sphere", "center": ["0","0","0"], "radius": "1"},   // optional closed form
 //              | {"type": "product_of_circles", "radii": ["1","1"]}           // circles in (x1,x2),(x3,x4),...
 //              | {"type": "so3"}                                              // x1..x9 = a rotation, row-major
+//              | {"type": "product", "factors": [{"type": "sphere", "coordinates": [1, 2, 3], "radius": "1"},
+//                                                {"type": "sphere", "coordinates": [4, 5], "radius": "2"}]}
+//                                      // S^2 x S^1; factor types sphere (k + 1 coordinates, centred at 0)
+//                                      // and so3 (9 coordinates); the blocks are disjoint and cover x1..xN
 //     "parametrization": {...same shapes as metric, plus "torus_of_revolution" with
 //                         "major_radius", "minor_radius"},                     // optional, for sampling
 //     "bounding_box": [["-1.5","1.5"], ...],              // optional, N intervals, for generic sampling
@@ -35,10 +39,21 @@ struct ReachSpec {
   bool exact = true;     // false: a lower bound
 };
 
+// One factor of a product shape: a round sphere of radius r centred at the origin of its k + 1
+// coordinates (a circle when k = 1), or SO(3) on nine coordinates (row-major).
+struct ShapeFactor {
+  enum class Kind { sphere, so3 };
+  Kind kind = Kind::sphere;
+  std::vector<int> coordinates;  // 0-based, in the order given (disjoint across factors)
+  mpq_class radius;              // sphere
+  int dimension() const { return kind == Kind::so3 ? 3 : static_cast<int>(coordinates.size()) - 1; }
+};
+
 // Closed-form shapes shared by "metric" and "parametrization".
 struct ShapeSpec {
-  enum class Kind { sphere, product_of_circles, torus_of_revolution, so3 };
+  enum class Kind { sphere, product_of_circles, torus_of_revolution, so3, product };
   Kind kind = Kind::sphere;
+  std::vector<ShapeFactor> factors;  // product: disjoint coordinate blocks covering x1..xN
   std::vector<mpq_class> center;  // sphere
   mpq_class radius;               // sphere
   std::vector<mpq_class> radii;   // product_of_circles, in coordinate pairs (x1,x2), (x3,x4), ...

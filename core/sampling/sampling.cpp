@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 
 #include <limits>
@@ -17,6 +18,21 @@ namespace delcert::sampling {
 namespace {
 
 using Kind = io::ShapeSpec::Kind;
+
+// Haar measure on SO(3): a uniform unit quaternion, as a row-major rotation matrix R[0..9). The
+// Frobenius metric on SO(3) is bi-invariant, so Haar measure is its volume measure.
+void uniform_rotation(Random& rng, double* R) {
+  double q[4], n2 = 0;
+  while (n2 < 1e-20) {
+    n2 = 0;
+    for (double& v : q) v = rng.normal(), n2 += v * v;
+  }
+  double n = std::sqrt(n2), w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+  const double M[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+                       2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                       2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+  std::copy(M, M + 9, R);
+}
 
 void sample_shape(const io::ShapeSpec& sh, int N, Random& rng, std::vector<double>& p) {
   p.assign(N, 0.0);
@@ -50,21 +66,29 @@ void sample_shape(const io::ShapeSpec& sh, int N, Random& rng, std::vector<doubl
       p[2] = r * std::sin(v);
       break;
     }
-    case Kind::so3: {
-      // Haar measure: a uniform unit quaternion. The Frobenius metric on SO(3) is bi-invariant,
-      // so Haar measure is its volume measure.
-      double q[4], n2 = 0;
-      while (n2 < 1e-20) {
-        n2 = 0;
-        for (double& v : q) v = rng.normal(), n2 += v * v;
-      }
-      double n = std::sqrt(n2), w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
-      double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                     2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                     2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-      p.assign(R, R + 9);
+    case Kind::so3:
+      uniform_rotation(rng, p.data());
       break;
-    }
+    case Kind::product:
+      // The volume measure of a Riemannian product is the product of the factors' volume
+      // measures: each factor sampled on its own, uniformly.
+      for (const io::ShapeFactor& f : sh.factors) {
+        if (f.kind == io::ShapeFactor::Kind::so3) {
+          double R[9];
+          uniform_rotation(rng, R);
+          for (int k = 0; k < 9; ++k) p[f.coordinates[k]] = R[k];
+          continue;
+        }
+        double norm2 = 0;
+        std::vector<double> x(f.coordinates.size());
+        while (norm2 < 1e-20) {
+          norm2 = 0;
+          for (double& v : x) v = rng.normal(), norm2 += v * v;
+        }
+        const double s = f.radius.get_d() / std::sqrt(norm2);
+        for (std::size_t k = 0; k < x.size(); ++k) p[f.coordinates[k]] = s * x[k];
+      }
+      break;
   }
 }
 

@@ -400,6 +400,49 @@ TEST(IntrinsicTorus, BuiltinSpecAndPointsNearM) {
   EXPECT_EQ(certified_set(D), ref);
 }
 
+// The same metrics written as products (issue 12's format): circles on (x1, x2), (x3, x4) give
+// the flat torus's Del_M; circles elsewhere and a sphere factor beside a circle (S^2 x S^1) are
+// "not built", with the product named.
+TEST(IntrinsicTorus, ProductMetricsAsFactors) {
+  const io::PointSet P = random_torus(2, 200, 12);
+  const Simplices ref = reference_t2(P);
+  std::string text = io::builtin_spec_text("clifford-torus-2");
+  const std::string shorthand = R"("metric": {"type": "product_of_circles", "radii": ["1", "1"]})";
+  auto with_metric = [&](const std::string& metric) {
+    std::string t = text;
+    t.replace(t.find(shorthand), shorthand.size(), "\"metric\": " + metric);
+    return io::parse_spec(t, "product.json");
+  };
+  detail::PointGrid grid(P, 2);
+  const IntrinsicDelaunay D = compute_intrinsic_delaunay(
+      with_metric(R"({"type": "product", "factors": [{"type": "sphere", "coordinates": [1, 2], "radius": "1"},
+                                                     {"type": "sphere", "coordinates": [3, 4], "radius": "1"}]})"),
+      P, grid, {ref.begin(), ref.end()}, 2);
+  EXPECT_TRUE(D.complete) << D.reason;
+  EXPECT_EQ(D.metric, "product_of_circles");
+  EXPECT_EQ(certified_set(D), ref);
+  const IntrinsicDelaunay E = compute_intrinsic_delaunay(
+      with_metric(R"({"type": "product", "factors": [{"type": "sphere", "coordinates": [3, 4], "radius": "1"},
+                                                     {"type": "sphere", "coordinates": [1, 2], "radius": "1"}]})"),
+      P, grid, {ref.begin(), ref.end()}, 2);
+  EXPECT_FALSE(E.computed);
+  EXPECT_NE(E.reason.find("S^1 x S^1 (circles not on the coordinate pairs"), std::string::npos) << E.reason;
+
+  const io::ManifoldSpec s2s1 = io::parse_spec(R"({"format": "delcert-manifold v1", "intrinsic_dimension": 3,
+    "ambient_dimension": 5, "equations": ["x1^2 + x2^2 + x3^2 - 1", "x4^2 + x5^2 - 4"],
+    "metric": {"type": "product", "factors": [{"type": "sphere", "coordinates": [1, 2, 3], "radius": "1"},
+                                              {"type": "sphere", "coordinates": [4, 5], "radius": "2"}]},
+    "parametrization": {"name": "product", "factors": [{"type": "sphere", "coordinates": [1, 2, 3], "radius": "1"},
+                                                       {"type": "sphere", "coordinates": [4, 5], "radius": "2"}]}})",
+                                               "s2xs1.json");
+  const io::PointSet Q = test::make_points(5, {{1, 0, 0, 2, 0}, {0, 1, 0, 0, 2}, {0, 0, 1, -2, 0}, {-1, 0, 0, 0, -2}});
+  detail::PointGrid qgrid(Q, 3);
+  const IntrinsicDelaunay F = compute_intrinsic_delaunay(s2s1, Q, qgrid, {{0, 1, 2, 3}}, 1);
+  EXPECT_FALSE(F.computed);
+  EXPECT_EQ(F.metric, "product");
+  EXPECT_NE(F.reason.find("the product S^2 x S^1 is not built"), std::string::npos) << F.reason;
+}
+
 // Radii (1, 3/2) on points of the unit circles (off M in the second plane, projected radially),
 // against a brute-force reference in doubles (every triangle among 40 nearest neighbours whose
 // circumcircle of the shortest lifts, in the scaled angle coordinates, is empty): equal,

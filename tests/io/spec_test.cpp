@@ -132,6 +132,45 @@ TEST(Spec, UnknownKeysAreRefusedAtEveryLevel) {
   expect_spec_error(sphere_with("\"Reach\": {\"value\": \"1\"}"), 6, "unknown key 'Reach'");
 }
 
+// A product metric (issue 12): factors on disjoint coordinate blocks covering x1..xN, their
+// dimensions adding up to m; each mistake named at its line.
+std::string s2_x_s1(const std::string& factors) {
+  return "{\"format\": \"delcert-manifold v1\",\n"
+         "\"intrinsic_dimension\": 3, \"ambient_dimension\": 5,\n"
+         "\"equations\": [\"x1^2 + x2^2 + x3^2 - 1\", \"x4^2 + x5^2 - 4\"],\n"
+         "\"bounding_box\": [[\"-1\", \"1\"], [\"-1\", \"1\"], [\"-1\", \"1\"], [\"-2\", \"2\"], [\"-2\", \"2\"]],\n"
+         "\"metric\": {\"type\": \"product\", \"factors\": [\n" + factors + "]}}";
+}
+
+TEST(Spec, ProductMetric) {
+  const ManifoldSpec s = parse_spec(s2_x_s1("{\"type\": \"sphere\", \"coordinates\": [1, 2, 3], \"radius\": \"1\"},\n"
+                                            "{\"type\": \"sphere\", \"coordinates\": [4, 5], \"radius\": \"2\"}"),
+                                    "s.json");
+  ASSERT_TRUE(s.metric.has_value());
+  ASSERT_EQ(s.metric->kind, ShapeSpec::Kind::product);
+  ASSERT_EQ(s.metric->factors.size(), 2u);
+  EXPECT_EQ(s.metric->factors[0].coordinates, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(s.metric->factors[0].dimension(), 2);
+  EXPECT_EQ(s.metric->factors[1].radius, 2);
+  const std::string a = "{\"type\": \"sphere\", \"coordinates\": [1, 2, 3], \"radius\": \"1\"},\n";
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"sphere\", \"coordinates\": [3, 4, 5], \"radius\": \"2\"}"), 7,
+                    "coordinate x3 is already in a factor");
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"sphere\", \"coordinates\": [4], \"radius\": \"2\"}"), 7,
+                    "a sphere factor needs at least 2 coordinates");
+  expect_spec_error(s2_x_s1("{\"type\": \"sphere\", \"coordinates\": [1, 2, 3, 4], \"radius\": \"1\"}"), 5,
+                    "coordinate x5 is in no factor");
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"so3\", \"coordinates\": [4, 5]}"), 7, "an so3 factor needs 9 coordinates");
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"torus\", \"coordinates\": [4, 5]}"), 7,
+                    "unknown factor type 'torus'; known: sphere, so3");
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"sphere\", \"coordinates\": [4, 6], \"radius\": \"2\"}"), 7,
+                    "between 1 and 5");
+  expect_spec_error(s2_x_s1(a + "{\"type\": \"sphere\", \"coordinates\": [4, 5], \"radius\": \"0\"}"), 7,
+                    "must be positive");
+  // S^4 on the five coordinates: dimension 4, not 3.
+  expect_spec_error(s2_x_s1("{\"type\": \"sphere\", \"coordinates\": [1, 2, 3, 4, 5], \"radius\": \"1\"}"), 5,
+                    "the factors' dimensions add up to 4, not the intrinsic dimension 3");
+}
+
 // JSON integers were converted with get<long>(): 2^64 - 1 became -1. They are read exactly as
 // written, and refused when out of range.
 TEST(Spec, IntegersAreReadExactlyOrRefused) {

@@ -66,6 +66,29 @@ INSTANTIATE_TEST_SUITE_P(Builtins, EpsNet,
                                            NetCase{"torus-of-revolution", 0.4}, NetCase{"sphere-3", 0.45},
                                            NetCase{"so3", 0.8}));
 
+// A product parametrization (S^2 x S^1 of radii 1 and 2, the circle on x1, x5): every sample
+// on both factors, both factors' coordinates spread (each factor sampled uniformly on its own).
+TEST(SampleShape, ProductOfASphereAndACircle) {
+  const io::ManifoldSpec spec = io::parse_spec(R"({"format": "delcert-manifold v1", "intrinsic_dimension": 3,
+    "ambient_dimension": 5, "equations": ["x2^2 + x3^2 + x4^2 - 1", "x1^2 + x5^2 - 4"],
+    "parametrization": {"name": "product", "factors": [{"type": "sphere", "coordinates": [2, 3, 4], "radius": "1"},
+                                                       {"type": "sphere", "coordinates": [1, 5], "radius": "2"}]}})",
+                                               "s2xs1.json");
+  manifold::Manifold manifold(spec);
+  Random random(7);
+  io::PointSet P;
+  sample_manifold(manifold, 2000, random, P);
+  ASSERT_EQ(P.size(), 2000u);
+  double mean[5] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const auto p = P.point(i);
+    EXPECT_NEAR(p[1] * p[1] + p[2] * p[2] + p[3] * p[3], 1, 1e-12);
+    EXPECT_NEAR(p[0] * p[0] + p[4] * p[4], 4, 1e-12);
+    for (int k = 0; k < 5; ++k) mean[k] += p[k] / 2000;
+  }
+  for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(mean[k]), 0.15) << k;  // uniform: centred (4 sigma)
+}
+
 TEST(FarthestPoint, KnownAnswerOnALine) {
   io::PointSet ps;
   ps.dimension = 1;
