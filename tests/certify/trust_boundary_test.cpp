@@ -150,9 +150,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // without taking something out. Del_M on SO(3) (issue 12, certify/intrinsic_so3.cpp: the
   // quaternion lift, the certified nearest rotation and the cap argument, ~330 lines of which half
   // are proofs) and the hull engine it shares with the sphere (certify/detail/sphere_hull.*, the
-  // sphere's decisions, gift wrapping and ridge count made generic: +150 net) took it to ~7360:
-  // 7400.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7400) << "certify/ should stay small enough to read whole";
+  // sphere's decisions, gift wrapping and ridge count made generic: +150 net) took it to ~7360,
+  // and reading a product metric as the shape it is (certify/intrinsic.cpp, ~40 lines) to 7434:
+  // 7460.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7460) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
