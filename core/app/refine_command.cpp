@@ -17,7 +17,8 @@
 //              β = 1.5 it examines ~15x more simplices per candidate than at 1.2), and at
 //              realistic ε candidates are rarely hit at all;
 //   δ0 = Γ0^ceil((m+1)/2)   the largest power of Γ0 that satisfies H3 (0.01 for m = 2, 3);
-//              claimed protection δ̌^2 = δ0^2 (ε/9)^2;
+//              claimed protection δ̌^2 = δ0^2 (ε_min/9)^2, ε_min the smallest local ε (= ε
+//              unless the practical mode had to shrink ε locally; docs/refinement.md);
 //   ε when only --points is given: two significant digits above the input's largest R_p, so
 //              that Rule 1 has nothing to do at the start.
 #include <chrono>
@@ -201,7 +202,7 @@ Command add_refine_command(CLI::App& app) {
   sub->add_option("--alpha", args->alpha, "picking ratio alpha: picking region B(c_p, alpha R_p)")->capture_default_str();
   sub->add_option("--beta", args->beta, "hitting-set radius ratio beta")->capture_default_str();
   sub->add_option("--delta0", args->delta0,
-                  "protection ratio delta0: claimed protection delta0^2 (eps/9)^2 (default: Gamma0^ceil((m+1)/2), "
+                  "protection ratio delta0: claimed protection delta0^2 (eps_min/9)^2, eps_min the smallest local eps (default: Gamma0^ceil((m+1)/2), "
                   "the largest power of Gamma0 allowed by the paper's H3)");
   sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")
       ->capture_default_str()
