@@ -22,6 +22,7 @@
 //   ε when only --points is given: two significant digits above the input's largest R_p, so
 //              that Rule 1 has nothing to do at the start.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -175,8 +176,9 @@ int run_refine(const RefineArgs& a) {
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
-  std::printf("min distance       %.4g (eps/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
-              refine::mu0_times(refine::as_doubles(used).eps),
+  std::printf("min distance       %.4g (%s/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
+              result.eps_level > 0 ? "eps_min" : "eps",
+              refine::mu0_times(std::ldexp(refine::as_doubles(used).eps, -result.eps_level)),
               result.sparsity_violations.size());
   // Wall-clock time of the whole command (printed only; the outputs carry the refiner's own times).
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
