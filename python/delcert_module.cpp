@@ -355,11 +355,14 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
       eo.eps = refine::as_doubles(params.constants).eps;
       eo.seed = seed;
       sampling::check_eps_net_size(manifold, eo);  // as `delcert refine --eps`: refuse a run that cannot end
-      auto net = sampling::eps_net(manifold, eo);
+      int halvings = 0;  // as `delcert refine --eps`: a net of at least m + 2 points
+      auto net = sampling::eps_net_with_at_least(manifold, eo, static_cast<std::size_t>(m + 2), &halvings);
       manifold::check_sample_on_manifold(manifold, net.points, source);
       input = std::move(net.points);
-      input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text +
-                   " --seed " + std::to_string(seed) + ")";
+      std::string net_eps = params.constants.eps.value().text;
+      if (halvings > 0) net_eps = "(" + net_eps + ")/" + std::to_string(1L << halvings);
+      input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + net_eps + " --seed " +
+                   std::to_string(seed) + ")";
     }
     const std::string where = p ? p->name : std::string("delcert.refine");
     try {

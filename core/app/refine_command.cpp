@@ -114,15 +114,12 @@ int run_refine(const RefineArgs& a) {
     sampling::check_eps_net_size(manifold, eo);
     io::ProgressLine progress = io::ProgressLine::on_stderr();
     eo.progress = eps_net_progress(progress);
-    auto net = sampling::eps_net(manifold, eo);
     // An ε as coarse as M itself gives a net of fewer than the m + 2 points a star needs: the
     // net is then taken at ε/2, ε/4, ... (the refiner's ε stays the one given).
+    int halvings = 0;
+    auto net = sampling::eps_net_with_at_least(manifold, eo, static_cast<std::size_t>(m + 2), &halvings);
     std::string net_eps = params.constants.eps.value().text;
-    for (int halvings = 1; net.points.size() < static_cast<std::size_t>(m + 2) && halvings <= 20; ++halvings) {
-      eo.eps /= 2;
-      net = sampling::eps_net(manifold, eo);
-      net_eps = "(" + params.constants.eps.value().text + ")/" + std::to_string(1L << halvings);
-    }
+    if (halvings > 0) net_eps = "(" + net_eps + ")/" + std::to_string(1L << halvings);
     manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
     input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + net_eps + " --seed " + std::to_string(a.seed) + ")";
