@@ -484,15 +484,14 @@ void Refiner::add_eps_site(const Configuration& c, int level) {
   R_.eps_level = std::max(R_.eps_level, level);
 }
 
-// Whether x, produced for c, applies it: not on a point, and for Rule 1 inside the Delaunay ball
-// (so that the big cell dies). Practical mode only.
+// Whether x, produced for c, applies it: not on a point and, for a cell, inside its Delaunay ball
+// B(c_p(σ), R_p(σ)), so that σ leaves star(p) and c is gone (a point of the picking region is
+// there unless the lift by ψ_p adds more than the ball's slack, at a coarse ε). Practical mode only.
 bool Refiner::applies(const Configuration& c, const Eigen::VectorXd& x) const {
   if (!x.allFinite() || !(index_.nearest_distance2(manifold::as_span(x)) > 0)) return false;
-  if (c.rule == Rule::big && !c.open) {
-    Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
-    return (x - centre).squaredNorm() < c.radius2 * (1 - kMargin);
-  }
-  return true;
+  if (c.open) return true;
+  Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
+  return (x - centre).squaredNorm() < c.radius2 * (1 - kMargin);
 }
 
 // A unit tangent direction at p in which p's power cell is (nearly) unbounded: among the 2m frame
