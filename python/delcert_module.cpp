@@ -294,7 +294,7 @@ std::string rational_text(const py::handle& obj, const std::string& option) {
 py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg, const py::object& eps_arg,
                        const std::string& mode, const py::object& gamma0, const py::object& alpha, const py::object& beta,
                        const py::object& delta0, std::uint64_t seed, int threads, std::size_t max_inserted,
-                       std::size_t max_rounds, const py::object& out_arg) {
+                       std::size_t max_rounds, const py::object& out_arg, std::size_t max_points) {
   const std::string source = path_text(manifold_arg);
   check_threads(threads);
   if (mode != "practical" && mode != "paper")
@@ -343,6 +343,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
     params.threads = threads;
     params.max_inserted = max_inserted;
     params.max_rounds = max_rounds;
+    params.max_points = max_points;
     py::gil_scoped_release release;
     io::PointSet input;
     std::string input_text;
@@ -354,11 +355,14 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
       eo.eps = refine::as_doubles(params.constants).eps;
       eo.seed = seed;
       sampling::check_eps_net_size(manifold, eo);  // as `delcert refine --eps`: refuse a run that cannot end
-      auto net = sampling::eps_net(manifold, eo);
+      int halvings = 0;  // as `delcert refine --eps`: a net of at least m + 2 points
+      auto net = sampling::eps_net_with_at_least(manifold, eo, static_cast<std::size_t>(m + 2), &halvings);
       manifold::check_sample_on_manifold(manifold, net.points, source);
       input = std::move(net.points);
-      input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text +
-                   " --seed " + std::to_string(seed) + ")";
+      std::string net_eps = params.constants.eps.value().text;
+      if (halvings > 0) net_eps = "(" + net_eps + ")/" + std::to_string(1L << halvings);
+      input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + net_eps + " --seed " +
+                   std::to_string(seed) + ")";
     }
     const std::string where = p ? p->name : std::string("delcert.refine");
     try {
@@ -558,7 +562,7 @@ PYBIND11_MODULE(delcert, m) {
   m.def("refine", &py_refine, py::arg("manifold"), py::arg("points") = py::none(), py::arg("eps") = py::none(),
         py::arg("mode") = "practical", py::arg("gamma0") = "0.1", py::arg("alpha") = "0.3", py::arg("beta") = "1.1",
         py::arg("delta0") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0, py::arg("max_inserted") = 0,
-        py::arg("max_rounds") = 0, py::arg("out") = py::none(),
+        py::arg("max_rounds") = 0, py::arg("out") = py::none(), py::arg("max_points") = 0,
         "Refines a sample of M until its tangential complex is thick, protected and consistent\n"
         "(`delcert refine`). Start from points (an array or a file path) or, without them, from an\n"
         "eps-net. The constants are exact: give them as str ('0.25', '1/4'), int or float. Returns a\n"

@@ -3,9 +3,11 @@
 //
 // Refines a sample of M until its tangential Delaunay complex is thick, protected and (in the
 // practical mode) consistent (paper §4, docs/design.md §3.5; see docs/refinement.md for
-// the rules). Writes DIR/points.txt (the input points first, in order), DIR/complex.txt,
+// the rules; where ε is too coarse for the local geometry the practical mode shrinks it locally).
+// Writes DIR/points.txt (the input points first, in order), DIR/complex.txt,
 // DIR/report.json and DIR/claims.json. Exit status 0 when converged, 4 when a cap stopped the
-// run (the partial output is written and report.json says "converged": false), 2 on bad input.
+// run (--max-points, default 1000000, or an explicit --max-inserted / --max-rounds; the partial
+// output is written and report.json says "converged": false), 2 on bad input.
 //
 // Defaults (the paper's constants are unusable at any ε one can compute with: H1 asks β >= 2.9
 // and H2 Γ0 < 1/(B+1) < 1e-8):
@@ -15,10 +17,12 @@
 //              β = 1.5 it examines ~15x more simplices per candidate than at 1.2), and at
 //              realistic ε candidates are rarely hit at all;
 //   δ0 = Γ0^ceil((m+1)/2)   the largest power of Γ0 that satisfies H3 (0.01 for m = 2, 3);
-//              claimed protection δ̌^2 = δ0^2 (ε/9)^2;
+//              claimed protection δ̌^2 = δ0^2 (ε_min/9)^2, ε_min the smallest local ε (= ε
+//              unless the practical mode had to shrink ε locally; docs/refinement.md);
 //   ε when only --points is given: two significant digits above the input's largest R_p, so
 //              that Rule 1 has nothing to do at the start.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -46,7 +50,7 @@ struct RefineArgs {
   std::string eps, gamma0 = "0.1", alpha = "0.3", beta = "1.1", delta0;
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
-  std::size_t max_inserted = 0, max_rounds = 0;
+  std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
 };
 
 // "round 12: 3456 points (+456); pending 3 big, 40 inconsistent": the rules with configurations
@@ -91,6 +95,7 @@ int run_refine(const RefineArgs& a) {
   params.constants = refine::parse_constants(texts, m);
   params.seed = a.seed;
   params.threads = a.threads;
+  params.max_points = a.max_points;
   params.max_inserted = a.max_inserted;
   params.max_rounds = a.max_rounds;
 
@@ -109,10 +114,15 @@ int run_refine(const RefineArgs& a) {
     sampling::check_eps_net_size(manifold, eo);
     io::ProgressLine progress = io::ProgressLine::on_stderr();
     eo.progress = eps_net_progress(progress);
-    auto net = sampling::eps_net(manifold, eo);
+    // An ε as coarse as M itself gives a net of fewer than the m + 2 points a star needs: the
+    // net is then taken at ε/2, ε/4, ... (the refiner's ε stays the one given).
+    int halvings = 0;
+    auto net = sampling::eps_net_with_at_least(manifold, eo, static_cast<std::size_t>(m + 2), &halvings);
+    std::string net_eps = params.constants.eps.value().text;
+    if (halvings > 0) net_eps = "(" + net_eps + ")/" + std::to_string(1L << halvings);
     manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
     input = std::move(net.points);
-    input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + params.constants.eps.value().text + " --seed " + std::to_string(a.seed) + ")";
+    input_text = "eps-net of " + manifold.spec().name + " (delcert sample --eps " + net_eps + " --seed " + std::to_string(a.seed) + ")";
   }
 
   // The progress line: one phase per round (points, and the configurations pending per rule), its
@@ -152,13 +162,20 @@ int run_refine(const RefineArgs& a) {
     if (const auto& s = result.rules[rule]; s.inserted || s.failures)
       std::printf("  %-16s %zu inserted (%zu failures, %.3f s)\n", refine::to_string(rule), s.inserted, s.failures, s.seconds);
   std::printf("rounds             %zu\n", result.rounds);
+  if (!result.eps_sites.empty()) {
+    std::size_t below = 0;
+    for (double e : result.local_eps) below += e < refine::as_doubles(used).eps;
+    std::printf("local eps          down to eps/2^%d near %zu sites (%zu points below eps; report.json: local_eps)\n",
+                result.eps_level, result.eps_sites.size(), below);
+  }
   std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", refine::to_string(result.stop_reason));
   if (!result.converged) std::printf("advice             %s (exit status 4)\n", refine::advice(result.stop_reason));
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
-  std::printf("min distance       %.4g (eps/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
-              refine::mu0_times(refine::as_doubles(used).eps),
+  std::printf("min distance       %.4g (%s/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
+              result.eps_level > 0 ? "eps_min" : "eps",
+              refine::mu0_times(std::ldexp(refine::as_doubles(used).eps, -result.eps_level)),
               result.sparsity_violations.size());
   // Wall-clock time of the whole command (printed only; the outputs carry the refiner's own times).
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -184,16 +201,23 @@ Command add_refine_command(CLI::App& app) {
   sub->add_option("--alpha", args->alpha, "picking ratio alpha: picking region B(c_p, alpha R_p)")->capture_default_str();
   sub->add_option("--beta", args->beta, "hitting-set radius ratio beta")->capture_default_str();
   sub->add_option("--delta0", args->delta0,
-                  "protection ratio delta0: claimed protection delta0^2 (eps/9)^2 (default: Gamma0^ceil((m+1)/2), "
+                  "protection ratio delta0: claimed protection delta0^2 (eps_min/9)^2, eps_min the smallest local eps (default: Gamma0^ceil((m+1)/2), "
                   "the largest power of Gamma0 allowed by the paper's H3)");
   sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")
       ->capture_default_str()
       ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));
   sub->add_option("--threads", args->threads, threads_help())->capture_default_str()->transform(thread_count());
-  sub->add_option("--max-inserted", args->max_inserted, "cap on inserted points (0: 20 x input + 20000); exit 4 when hit")
+  sub->add_option("--max-points", args->max_points,
+                  "cap on the total number of points, input and inserted (0: the default); exit 4 with the partial "
+                  "output when hit")
       ->capture_default_str()
       ->transform(whole_number("a point count", std::numeric_limits<std::size_t>::max()));
-  sub->add_option("--max-rounds", args->max_rounds, "cap on refinement rounds (0: 2000); exit 4 when hit")
+  sub->add_option("--max-inserted", args->max_inserted,
+                  "cap on inserted points (0: none in practical mode, 20 x input + 20000 in paper mode); exit 4 when hit")
+      ->capture_default_str()
+      ->transform(whole_number("a point count", std::numeric_limits<std::size_t>::max()));
+  sub->add_option("--max-rounds", args->max_rounds,
+                  "cap on refinement rounds (0: none in practical mode, 2000 in paper mode); exit 4 when hit")
       ->capture_default_str()
       ->transform(whole_number("a round count", std::numeric_limits<std::size_t>::max()));
   sub->add_option("--out", args->out, "output directory (created if missing)")->required();

@@ -20,6 +20,8 @@ namespace {
 using json = nlohmann::ordered_json;
 
 json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+// A cap, null when there is none.
+json cap(std::size_t n) { return n == std::numeric_limits<std::size_t>::max() ? json(nullptr) : json(n); }
 
 // A decimal with `digits` significant digits strictly below x > 0 (a safe rational lower bound
 // of a double that was itself rounded: the margin 1e-9 covers it).
@@ -69,12 +71,21 @@ ClaimsOutcome make_claims(const RefineResult& r) {
     claims.star_radius = eps;
   else
     out.omitted.emplace_back("star_radius", "some star simplex has R_p >= eps, or a star is not closed");
-  const mpq_class mu0eps = mu0_times(eps);
+  // Sparsity and protection hold with the smallest local ε, ε / 2^eps_level (docs/refinement.md,
+  // "Local ε"); the star radius with ε itself, the largest local ε.
+  mpq_class eps_min = eps;
+  if (r.eps_level > 0) {
+    mpz_class two_k;
+    mpz_ui_pow_ui(two_k.get_mpz_t(), 2, static_cast<unsigned long>(r.eps_level));
+    eps_min /= two_k;
+    eps_min.canonicalize();
+  }
+  const mpq_class mu0eps = mu0_times(eps_min);
   if (f.min_distance > mu0eps.get_d() * (1 + 1e-9)) {
     claims.sparsity = mu0eps;
   } else if (f.min_distance > 0) {
     claims.sparsity = decimal_below(f.min_distance, 3);
-    out.omitted.emplace_back("sparsity eps/9", "the smallest distance is below eps/9 (the input is denser, or a "
+    out.omitted.emplace_back("sparsity eps/9", "the smallest distance is below eps_min/9 (the input is denser, or a "
                                                "sparsity violation was reported): the claim is a bound just below it");
   }
   if (f.all_good)
@@ -112,8 +123,9 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                      {"delta0", k.delta0.value().text},
                      {"mu0", "1/" + std::to_string(kMu0Reciprocal)},
                      {"seed", p.seed},
-                     {"max_inserted", p.max_inserted},
-                     {"max_rounds", p.max_rounds},
+                     {"max_points", p.max_points},
+                     {"max_inserted", cap(p.max_inserted)},
+                     {"max_rounds", cap(p.max_rounds)},
                      {"pick_attempts", p.pick_attempts}};
   {
     const HypothesesReport& h = r.hypotheses;
@@ -167,6 +179,7 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                               {"psi_failures", s.psi_failures},
                               {"fallbacks", s.fallbacks},
                               {"failures", s.failures},
+                              {"shrinks", s.shrinks},
                               {"seconds", s.seconds}};
   }
   j["rules"] = rules;
@@ -175,10 +188,33 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
     for (const char* s : kPracticalRules) pr.push_back(s);
     j["practical_rules"] = pr;
   }
+  {
+    // The sizing field (practical mode): ε(x) = min(ε, min over sites of ε_site + slope |x - site|).
+    mpz_class two_k;
+    mpz_ui_pow_ui(two_k.get_mpz_t(), 2, static_cast<unsigned long>(r.eps_level));
+    mpq_class eps_min = k.eps.value().value / two_k;
+    eps_min.canonicalize();
+    std::size_t below = 0;
+    for (double e : r.local_eps) below += e < dbl.eps;
+    json sites = json::array();
+    for (std::size_t i = 0; i < r.eps_sites.size() && i < 20; ++i) {
+      const auto& st = r.eps_sites[i];
+      sites.push_back({{"point", st.point}, {"level", st.level}, {"rule", to_string(st.rule)}, {"open_star", st.open}});
+    }
+    j["local_eps"] = {{"statement", "where a configuration could not be applied at the local eps, a site (p, eps/2^level) "
+                                    "was added: eps(x) = min(eps, min over sites of eps_site + slope |x - site|)"},
+                      {"slope", kSizingSlope},
+                      {"sites", r.eps_sites.size()},
+                      {"first_sites", sites},
+                      {"max_level", r.eps_level},
+                      {"min_eps", eps_min.get_str()},
+                      {"min_eps_double", number(std::ldexp(dbl.eps, -r.eps_level))},
+                      {"points_below_eps", below}};
+  }
   j["time_seconds"] = {{"stars", r.star_seconds}, {"configurations", r.configuration_seconds}, {"total", r.total_seconds}};
   json remaining = json::object();
   for (Rule rule : kRules) remaining[to_string(rule)] = f.remaining[rule];
-  const double mu0eps = mu0_times(dbl.eps);
+  const double mu0eps = mu0_times(std::ldexp(dbl.eps, -r.eps_level));  // the smallest local ε
   j["final"] = {{"stars", f.stars},
                 {"star_cells", f.star_cells},
                 {"complex_simplices", f.complex_simplices},
@@ -204,7 +240,8 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
     viol.push_back({{"point", v.point}, {"nearest", v.nearest}, {"distance", v.distance}, {"rule", to_string(v.rule)}});
   }
   j["sparsity"] = {{"bound", mu0eps},
-                   {"statement", "every inserted point is farther than eps/9 from the points before it"},
+                   {"statement", "every inserted point is farther than eps(x)/9 from the points before it (the bound "
+                                 "is the smallest: eps_min/9)"},
                    {"violations", r.sparsity_violations.size()},
                    {"first_violations", viol}};
   json om = json::object();

@@ -4,12 +4,14 @@
 // claims.json ("delcert-claims v2", io/claims.hpp) holds only what the output keeps,
 // by the producer's own measure, every value an exact rational string:
 //   eps               every star simplex has R_p(σ) < ε               (when no star cell is big)
-//   sparsity          every two points are farther apart than this:  μ0 ε = ε/9 when that holds,
-//                     otherwise a rational just below the smallest distance (a random input, or
-//                     a reported sparsity violation)
+//   sparsity          every two points are farther apart than this:  μ0 ε_min = ε_min/9 when that
+//                     holds, otherwise a rational just below the smallest distance (a random
+//                     input, or a reported sparsity violation)
 //   gamma0            every simplex of the complex is Γ0-good          (when every star simplex is)
-//   power_protection  δ̌^2 = δ0^2 (ε/9)^2: every star simplex is power-protected by more than
+//   power_protection  δ̌^2 = δ0^2 (ε_min/9)^2: every star simplex is power-protected by more than
 //                     that                                              (when the margin says so)
+// ε_min = ε / 2^eps_level is the smallest local ε of the practical mode (ε without local sites;
+// docs/refinement.md, "Local ε"); the star radius is claimed with ε, the largest.
 // A claim that does not hold is left out and report.json says why. points.txt, complex.txt and
 // claims.json are byte-identical for the same inputs and seed; report.json differs only in its
 // "seconds" fields.

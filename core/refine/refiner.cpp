@@ -44,6 +44,7 @@ const char* to_string(StopReason s) {
     case StopReason::max_rounds: return "max_rounds";
     case StopReason::stalled: return "stalled";
     case StopReason::time_limit: return "time_limit";
+    case StopReason::max_points: return "max_points";
   }
   return "?";
 }
@@ -52,13 +53,16 @@ const char* advice(StopReason s) {
   switch (s) {
     case StopReason::converged: return "";
     case StopReason::max_inserted:
-      return "the cap on inserted points was hit: raise --max-inserted (0 = 20 x input + 20000), or refine with a "
-             "larger --eps (fewer points)";
+      return "the cap on inserted points was hit: raise --max-inserted, or refine with a larger --eps (fewer points)";
     case StopReason::max_rounds:
-      return "the cap on rounds was hit: raise --max-rounds (0 = 2000)";
+      return "the cap on rounds was hit: raise --max-rounds";
+    case StopReason::max_points:
+      return "the cap on the number of points was hit (partial output written): raise --max-points (default 1000000), "
+             "or refine with a larger --eps; report.json's local_eps says where the curvature forced a smaller eps";
     case StopReason::stalled:
-      return "the refinement stalled (a round inserted nothing, or stars stay open with no rule left to apply): try "
-             "another --seed, a smaller --gamma0 or a larger --eps; report.json says what was left pending";
+      return "the refinement stalled (a round inserted nothing, or stars stay open with no rule left to apply; in "
+             "practical mode only when even a local eps below 2^-52 eps gives no point, which a smooth spec should "
+             "not do): try another --seed or a smaller --gamma0, and report it; report.json says what was left pending";
     case StopReason::time_limit:
       return "the time limit was hit (benchmarks only): raise it";
   }
@@ -72,6 +76,8 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 constexpr double kMargin = 1e-9;  // relative safety margin of practical-mode decisions
 constexpr int kMaxCell = 5;       // m + 1 <= 5
+constexpr std::size_t kNoCap = std::numeric_limits<std::size_t>::max();
+constexpr int kMaxEpsLevel = 52;  // local ε down to ε / 2^52
 
 struct CellKey {
   std::array<int, kMaxCell> v{-1, -1, -1, -1, -1};
@@ -101,6 +107,7 @@ struct Configuration {
   int q = -1;  // cosph apex
   double radius2 = 0;
   std::vector<double> centre;
+  bool open = false;  // practical mode: p's star is open (an unbounded power cell, R = ∞); no cell
 };
 
 bool canonical_less(const Configuration& a, const Configuration& b) {
@@ -118,8 +125,11 @@ class Refiner {
     resolve_delta0(P_.constants, m_);
     refine::validate(P_.constants);
     paper_ = P_.mode == RefineMode::paper;
-    if (P_.max_inserted == 0) P_.max_inserted = 20 * input.size() + 20000;
-    if (P_.max_rounds == 0) P_.max_rounds = 2000;
+    if (P_.max_points == 0) P_.max_points = kDefaultMaxPoints;
+    // Paper mode keeps the former default caps; in practical mode 0 is no cap of that kind (the
+    // points cap bounds everything, as every round inserts a point).
+    if (P_.max_inserted == 0) P_.max_inserted = paper_ ? 20 * input.size() + 20000 : kNoCap;
+    if (P_.max_rounds == 0) P_.max_rounds = paper_ ? 2000 : kNoCap;
     if (P_.pick_attempts <= 0) P_.pick_attempts = paper_ ? 2000 : 200;
     R_.points = input;
     R_.input_size = input.size();
@@ -132,17 +142,27 @@ class Refiner {
   void validate(const io::PointSet& input) const;
   void setup_eps();
   double gamma_check() const { return paper_ ? d_.gamma0 : d_.gamma0 * (1 + kMargin); }
-  CosphOptions cosph_options(double radius2) const {
+  CosphOptions cosph_options(std::size_t p, double radius2) const {
     CosphOptions o;
     o.delta0 = d_.delta0;
     if (!paper_) {
-      o.length_floor = mu0_eps_;
+      o.length_floor = mu0_times(leps_[p]);
       o.lower = -std::numeric_limits<double>::infinity();
       o.slack = kMargin * radius2;
     }
     return o;
   }
   bool is_big(double radius2) const { return radius2 >= (paper_ ? eps2_ : eps2_ * (1 - 2 * kMargin)); }
+  // Practical mode: against the local ε(p) (= ε without sites).
+  bool is_big_at(std::size_t p, double radius2) const {
+    if (paper_) return is_big(radius2);
+    return radius2 >= leps_[p] * leps_[p] * (1 - 2 * kMargin);
+  }
+  double local_eps_at(std::span<const double> x) const;
+  void add_eps_site(const Configuration& c, int level);
+  std::optional<Eigen::VectorXd> shrink(const Configuration& c, RuleStats& st);
+  Eigen::VectorXd open_direction(std::size_t p, const manifold::Frame& frame);
+  bool applies(const Configuration& c, const Eigen::VectorXd& x) const;
 
   std::vector<Configuration> configurations_of(std::size_t p) const;
   void recompute_configurations(const std::vector<std::size_t>& which);
@@ -176,6 +196,14 @@ class Refiner {
   std::set<CellKey> inconsistent_;
   double max_radius2_ = 0;
   std::size_t open_stars_ = 0;
+  // The sizing field (practical mode): sites and the local ε of every point.
+  struct Site {
+    std::vector<double> x;
+    double eps = 0;
+  };
+  std::vector<Site> sites_;
+  std::vector<double> leps_;
+  std::vector<std::size_t> leps_changed_;  // points whose ε(p) dropped this round
 };
 
 void Refiner::validate(const io::PointSet& input) const {
@@ -206,7 +234,19 @@ void Refiner::setup_eps() {
 std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
   std::vector<Configuration> out;
   const tangential::Star& st = tc_.star(p);
-  if (!st.closed) return out;
+  if (!st.closed) {
+    // Practical mode: an open star is a configuration of Rule 1 with R = ∞ (the unbounded power
+    // cell has a Voronoi vertex at infinity); shrink() inserts a point in the empty direction.
+    if (!paper_) {
+      Configuration cf;
+      cf.rule = Rule::big;
+      cf.p = static_cast<int>(p);
+      cf.radius2 = std::numeric_limits<double>::infinity();
+      cf.open = true;
+      out.push_back(std::move(cf));
+    }
+    return out;
+  }
   const double g = gamma_check();
   for (std::size_t c = 0; c < st.size(); ++c) {
     const auto cell = st.cell(c);
@@ -221,7 +261,7 @@ std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
       cf.centre.assign(st.centre(c).begin(), st.centre(c).end());
       out.push_back(std::move(cf));
     };
-    if (is_big(r2)) {
+    if (is_big_at(p, r2)) {
       make(Rule::big, -1);
       continue;
     }
@@ -229,7 +269,7 @@ std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
       make(Rule::bad_star, -1);
       continue;
     }
-    for (const CosphMember& mem : cosph_members(R_.points, index_, cell, st.centre(c), r2, cosph_options(r2))) {
+    for (const CosphMember& mem : cosph_members(R_.points, index_, cell, st.centre(c), r2, cosph_options(p, r2))) {
       std::array<int, kMaxCell + 1> v;
       std::copy(cell.begin(), cell.end(), v.begin());
       v[cell.size()] = static_cast<int>(mem.q);
@@ -333,6 +373,7 @@ PerRule<std::size_t> Refiner::pending() const {
 }
 
 bool Refiner::stale(const Configuration& c, std::size_t round_start) const {
+  if (c.open) return false;
   bool hit = false;
   index_.for_each_in_ball(c.centre, c.radius2 * (1 + kMargin), [&](std::size_t i, double) {
     if (i >= round_start) hit = true;
@@ -341,6 +382,7 @@ bool Refiner::stale(const Configuration& c, std::size_t round_start) const {
 }
 
 std::optional<Eigen::VectorXd> Refiner::produce(const Configuration& c, RuleStats& st) {
+  if (c.open) return std::nullopt;  // no cell: shrink() aims at the open direction
   if (c.rule != Rule::big) return pick_valid(c, st);
   // Rule 1: ψ_p(c_p(σ)).
   const auto p = R_.points.point(c.p);
@@ -369,7 +411,8 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
   hq.gamma0 = d_.gamma0;
   hq.delta0 = d_.delta0;
   hq.max_set_size = m_ + 1;
-  const double sparse2 = mu0_eps_ * mu0_eps_;
+  const double sparse_eps = paper_ ? mu0_eps_ : mu0_times(leps_[c.p]);
+  const double sparse2 = sparse_eps * sparse_eps;
   // Practical fallback when every candidate is rejected: the best one seen, preferring those
   // farther than μ0 ε (rejected for a hitting set only), then the farthest from the points.
   std::optional<Eigen::VectorXd> best;
@@ -407,13 +450,127 @@ bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
   if (!(d2 > 0)) return false;  // never insert a duplicate point
   const std::size_t id = R_.points.size();
   const double d = std::sqrt(d2);
-  if (d < mu0_eps_) R_.sparsity_violations.push_back({id, nn, d, rule});
+  const double leps = paper_ ? d_.eps : local_eps_at(manifold::as_span(x));
+  if (d < mu0_times(leps)) R_.sparsity_violations.push_back({id, nn, d, rule});
+  leps_.push_back(leps);
   if (R_.inserted_by.empty() || d < R_.final.min_inserted_distance) R_.final.min_inserted_distance = d;
   R_.points.push_back(manifold::as_span(x));
   index_.push_back(manifold::as_span(x));
   R_.inserted_by.push_back(rule);
   R_.rules[rule].inserted++;
   return true;
+}
+
+double Refiner::local_eps_at(std::span<const double> x) const {
+  double e = d_.eps;
+  for (const Site& s : sites_) e = std::min(e, s.eps + kSizingSlope * std::sqrt(spatial::squared_distance(x, s.x)));
+  return e;
+}
+
+void Refiner::add_eps_site(const Configuration& c, int level) {
+  Site site;
+  const auto p = R_.points.point(c.p);
+  site.x.assign(p.begin(), p.end());
+  site.eps = std::ldexp(d_.eps, -level);
+  for (std::size_t q = 0; q < leps_.size(); ++q) {
+    const double e = site.eps + kSizingSlope * std::sqrt(spatial::squared_distance(R_.points.point(q), site.x));
+    if (e < leps_[q]) {
+      leps_[q] = e;
+      leps_changed_.push_back(q);
+    }
+  }
+  sites_.push_back(std::move(site));
+  R_.eps_sites.push_back({static_cast<std::size_t>(c.p), level, c.rule, c.open});
+  R_.eps_level = std::max(R_.eps_level, level);
+}
+
+// Whether x, produced for c, applies it: not on a point and, for a cell, inside its Delaunay ball
+// B(c_p(σ), R_p(σ)), so that σ leaves star(p) and c is gone (a point of the picking region is
+// there unless the lift by ψ_p adds more than the ball's slack, at a coarse ε). Practical mode only.
+bool Refiner::applies(const Configuration& c, const Eigen::VectorXd& x) const {
+  if (!x.allFinite() || !(index_.nearest_distance2(manifold::as_span(x)) > 0)) return false;
+  if (c.open) return true;
+  Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
+  return (x - centre).squaredNorm() < c.radius2 * (1 - kMargin);
+}
+
+// A unit tangent direction at p in which p's power cell is (nearly) unbounded: among the 2m frame
+// axes and 32 seeded random directions, the one that maximises min_q -<u_q, d> / |u_q| over the
+// 64 nearest points q (u_q = T^T (q - p)).
+Eigen::VectorXd Refiner::open_direction(std::size_t p, const manifold::Frame& frame) {
+  const auto pp = R_.points.point(p);
+  Eigen::Map<const Eigen::VectorXd> pv(pp.data(), N_);
+  std::vector<std::pair<double, std::size_t>> nn;
+  index_.nearest(pp, 65, nn);
+  std::vector<Eigen::VectorXd> us;
+  for (const auto& [d2, q] : nn) {
+    if (q == p || !(d2 > 0)) continue;
+    Eigen::VectorXd u = frame.tangent.transpose() * (Eigen::Map<const Eigen::VectorXd>(R_.points.point(q).data(), N_) - pv);
+    const double n = u.norm();
+    if (n > 0) us.push_back(u / n);
+  }
+  std::vector<Eigen::VectorXd> candidates;
+  for (int i = 0; i < m_; ++i)
+    for (double sg : {1.0, -1.0}) {
+      Eigen::VectorXd d = Eigen::VectorXd::Zero(m_);
+      d[i] = sg;
+      candidates.push_back(d);
+    }
+  for (int k = 0; k < 32; ++k) {
+    Eigen::VectorXd d(m_);
+    for (int i = 0; i < m_; ++i) d[i] = rng_->normal();
+    if (d.norm() > 1e-12) candidates.push_back(d / d.norm());
+  }
+  Eigen::VectorXd best = candidates.front();
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (const auto& d : candidates) {
+    double score = std::numeric_limits<double>::infinity();
+    for (const auto& u : us) score = std::min(score, -u.dot(d));
+    if (score > best_score) best_score = score, best = d;
+  }
+  return frame.tangent * best;
+}
+
+// Practical mode, when c cannot be applied at the local ε (ψ_p and the closest point fail or miss
+// the Delaunay ball, Pick_valid finds nothing, or the star is open): the point ψ_p(p + s d) for the
+// unit tangent d towards c_p(σ) (or the open direction), with s = ε / 2^level for the smallest
+// level such that s <= ε(p) / 2, s < R_p(σ), and ψ_p succeeds within distance s of the tangent
+// point and lands inside the Delaunay ball; each failure halves s. The point's site (p, s) joins
+// the sizing field, so ε shrinks around p.
+std::optional<Eigen::VectorXd> Refiner::shrink(const Configuration& c, RuleStats& st) {
+  const auto p = R_.points.point(c.p);
+  auto frame = M_.frame(p);
+  if (!frame) return std::nullopt;
+  Eigen::Map<const Eigen::VectorXd> pv(p.data(), N_);
+  Eigen::VectorXd dir;
+  if (c.open) {
+    dir = open_direction(c.p, *frame);
+  } else {
+    Eigen::Map<const Eigen::VectorXd> centre(c.centre.data(), N_);
+    dir = frame->tangent * (frame->tangent.transpose() * (centre - pv));
+    if (!(dir.norm() > 0)) return std::nullopt;
+    dir /= dir.norm();
+  }
+  const double R = std::sqrt(c.radius2);
+  int level = 1;
+  while (level < kMaxEpsLevel && std::ldexp(d_.eps, -level) > leps_[c.p] / 2) ++level;
+  for (; level <= kMaxEpsLevel; ++level) {
+    const double s = std::ldexp(d_.eps, -level);
+    if (!(s < R)) continue;
+    const Eigen::VectorXd y = pv + s * dir;
+    manifold::NewtonOptions options;
+    options.max_distance = s;
+    auto x = M_.psi(p, *frame, y, options);
+    if (!x || !M_.on_selected_component(manifold::as_span(*x))) {
+      ++st.psi_failures;
+      continue;
+    }
+    if (!applies(c, *x)) continue;
+    add_eps_site(c, level);
+    ++st.shrinks;
+    return x;
+  }
+  return std::nullopt;
 }
 
 bool Refiner::new_star_is_big(std::size_t x) {
@@ -466,6 +623,7 @@ RefineResult Refiner::run() {
     R_.star_seconds += seconds_since(t);
   }
   setup_eps();
+  leps_.assign(R_.points.size(), d_.eps);
   {
     HypothesesInput hi;
     hi.m = m_;
@@ -547,11 +705,16 @@ RefineResult Refiner::run() {
     }
     std::sort(batch.begin(), batch.end(), canonical_less);
     const std::size_t round_start = R_.points.size();
-    bool capped = false;
+    bool capped = false, points_capped = false;
+    leps_changed_.clear();
     for (const Configuration& c : batch) {
       RuleStats& st = R_.rules[c.rule];
       if (R_.points.size() - R_.input_size >= P_.max_inserted) {
         capped = true;
+        break;
+      }
+      if (R_.points.size() >= P_.max_points) {
+        points_capped = true;
         break;
       }
       if (stale(c, round_start)) {
@@ -560,6 +723,7 @@ RefineResult Refiner::run() {
       }
       const auto t = Clock::now();
       auto x = produce(c, st);
+      if (!paper_ && (!x || !applies(c, *x))) x = shrink(c, st);
       bool ok = x && insert(*x, c.rule);
       if (ok)
         ++st.applied;
@@ -573,7 +737,7 @@ RefineResult Refiner::run() {
     }
     const std::size_t added = R_.points.size() - round_start;
     if (added == 0) {
-      R_.stop_reason = capped ? StopReason::max_inserted : StopReason::stalled;
+      R_.stop_reason = points_capped ? StopReason::max_points : capped ? StopReason::max_inserted : StopReason::stalled;
       break;
     }
     {
@@ -586,15 +750,23 @@ RefineResult Refiner::run() {
       std::vector<std::size_t> affected = cosph_affected(round_start);
       std::vector<std::size_t> dirty;
       std::set_union(changed.begin(), changed.end(), affected.begin(), affected.end(), std::back_inserter(dirty));
+      if (!leps_changed_.empty()) {  // a local ε dropped: those stars' configurations change too
+        std::sort(leps_changed_.begin(), leps_changed_.end());
+        std::vector<std::size_t> merged;
+        std::set_union(dirty.begin(), dirty.end(), leps_changed_.begin(), leps_changed_.end(), std::back_inserter(merged));
+        merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+        dirty = std::move(merged);
+      }
       recompute_configurations(dirty);
       R_.configuration_seconds += seconds_since(t2);
     }
-    if (capped) {
-      R_.stop_reason = StopReason::max_inserted;
+    if (points_capped || capped) {
+      R_.stop_reason = points_capped ? StopReason::max_points : StopReason::max_inserted;
       break;
     }
   }
   R_.converged = R_.stop_reason == StopReason::converged;
+  R_.local_eps = leps_;
   measure();
   R_.parameters = P_;
   R_.parameters.progress = nullptr;
@@ -617,7 +789,8 @@ void Refiner::measure() {
   f.remaining = pending();
   f.remaining[Rule::inconsistent] = assembly.inconsistent.size();
   const int k = m_ + 1;
-  const double dcheck2 = d_.delta0 * d_.delta0 * mu0_eps_ * mu0_eps_;
+  const double mu0_min = mu0_times(std::ldexp(d_.eps, -R_.eps_level));  // the smallest local ε
+  const double dcheck2 = d_.delta0 * d_.delta0 * mu0_min * mu0_min;
   std::set<CellKey> inconsistent;
   for (const auto& s : assembly.inconsistent) inconsistent.insert(make_key(s));
   f.min_thickness = 1;

@@ -25,6 +25,8 @@ const char* to_string(RefineMode m);
 
 enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4 };
 inline constexpr int kNumRules = 5;
+// Lipschitz slope of the practical mode's local ε (the sizing field; docs/refinement.md).
+inline constexpr double kSizingSlope = 0.5;
 inline constexpr std::array<Rule, kNumRules> kRules = {Rule::big, Rule::bad_star, Rule::bad_cosph, Rule::unprotected,
                                                        Rule::inconsistent};
 const char* to_string(Rule r);
@@ -38,10 +40,13 @@ struct PerRule {
 };
 
 // Why a run stopped; only `converged` is a success.
-enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit };
+enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit, max_points };
 const char* to_string(StopReason s);
 // What to do about a run that stopped for `s` (not converged): one sentence for the user.
 const char* advice(StopReason s);
+
+// The default cap on the total number of points (input and inserted).
+inline constexpr std::size_t kDefaultMaxPoints = 1000000;
 
 struct RefineProgress {
   std::size_t round = 0;
@@ -55,8 +60,10 @@ struct RefineParameters {
   Constants constants;  // ε, Γ0, α, β, δ0, exact
   std::uint64_t seed = 1;
   int threads = 1;
-  // Caps: the run stops (not converged) when it would insert more than max_inserted points or
-  // start round max_rounds + 1. 0: max_inserted = 20 * #input + 20000, max_rounds = 2000.
+  // Caps: the run stops (not converged) when it would hold more than max_points points in all
+  // (0: kDefaultMaxPoints), insert more than max_inserted points or start round max_rounds + 1
+  // (0: no cap of that kind; every round inserts a point, so max_points bounds the rounds too).
+  std::size_t max_points = 0;
   std::size_t max_inserted = 0;
   std::size_t max_rounds = 0;
   // Pick_valid draws at most this many candidates per configuration (0: 200 in practical mode,
@@ -82,6 +89,7 @@ struct RuleStats {
   std::size_t psi_failures = 0;      // ... where ψ_p failed
   std::size_t fallbacks = 0;         // configurations where Pick_valid gave up and took the best candidate
   std::size_t failures = 0;          // configurations where no point could be produced
+  std::size_t shrinks = 0;           // configurations applied by shrinking ε locally (practical; docs/refinement.md)
   double seconds = 0;                // time spent producing the points of this rule
 };
 
@@ -120,6 +128,19 @@ struct RefineResult {
   std::size_t rounds = 0;
   PerRule<RuleStats> rules{};
   std::vector<SparsityViolation> sparsity_violations;
+  // Local ε (practical mode; docs/refinement.md, "Local ε"): where a configuration could not be
+  // applied at the local ε, a site (point, ε / 2^level) was added to the sizing field
+  // ε(x) = min(ε, min over sites of ε_site + kSizingSlope |x - site|). eps_level is the largest
+  // level (0: no site), so the smallest local ε is exactly ε / 2^eps_level.
+  struct EpsSite {
+    std::size_t point = 0;  // the point whose configuration was stuck
+    int level = 0;
+    Rule rule = Rule::big;
+    bool open = false;      // the point's star was open (no cell to aim at)
+  };
+  std::vector<EpsSite> eps_sites;
+  int eps_level = 0;
+  std::vector<double> local_eps;  // per point, ε(p) at the end (= ε everywhere without sites)
   std::size_t initial_inconsistent_simplices = 0;  // in the input's complex
   std::size_t initial_inconsistent_stars = 0;      // stars of the input holding an inconsistent simplex
   PerRule<std::size_t> initial_configurations{};  // per rule, in the input's complex

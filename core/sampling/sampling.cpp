@@ -214,6 +214,20 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
   return r;
 }
 
+EpsNetResult eps_net_with_at_least(const manifold::Manifold& manifold, const EpsNetOptions& options,
+                                   std::size_t min_points, int* halvings) {
+  EpsNetOptions o = options;
+  EpsNetResult net = eps_net(manifold, o);
+  int h = 0;
+  while (net.points.size() < min_points && h < 20) {
+    ++h;
+    o.eps /= 2;
+    net = eps_net(manifold, o);
+  }
+  if (halvings) *halvings = h;
+  return net;
+}
+
 EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options) {
   if (!(options.eps > 0) || !std::isfinite(options.eps)) throw std::invalid_argument("eps must be a positive number");
   Random rng(options.seed);

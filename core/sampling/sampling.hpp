@@ -44,6 +44,12 @@ struct EpsNetResult {
 // far as the dense sample can tell, an eps-sample. Same options, same bytes.
 EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& options);
 
+// The starting sample of `refine --eps`: eps_net, but when an eps as coarse as M itself gives
+// fewer than min_points points (a star needs m + 2), the net at eps/2, eps/4, ... (at most 20
+// halvings; *halvings, when given, says how many were taken).
+EpsNetResult eps_net_with_at_least(const manifold::Manifold& manifold, const EpsNetOptions& options,
+                                   std::size_t min_points, int* halvings = nullptr);
+
 // A pilot estimate of eps_net's sizes, before the run: farthest-point selection on a pilot of
 // `min_dense` random points (same seed), at eps or, where the pilot is too coarse to tell (more
 // than a quarter of it selected), at eps' = 2^j eps with the count scaled by (eps' / eps)^m.

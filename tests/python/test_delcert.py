@@ -228,3 +228,19 @@ def test_gudhi_tangential_complex_in_five_lines():
     # One triangle fewer is refuted: the certificate is about GUDHI's complex, not recomputed instead of it.
     assert delcert.certify("builtin:sphere-2", points, triangles[1:], threads=THREADS,
                            skip_restricted=True)["verdict"] == "REFUTED"
+
+
+def test_refine_shrinks_eps_locally_from_a_coarse_eps():
+    # Issue 15 item 1: the 8-1-1 ellipsoid from eps = bounding-box diameter / 4 (its eps-net has
+    # 3 points; the net is taken at eps/2) converges, with eps shrunk locally, and the points cap
+    # stops a run with the partial output.
+    spec = str(FIXTURES / "specs" / "uneven" / "ellipsoid-8-1-1.json")
+    r = delcert.refine(spec, eps="4.22", seed=1, threads=THREADS)
+    assert r["converged"]
+    assert r["report"]["local_eps"]["max_level"] > 0
+    assert "(4.22)/2" in r["report"]["input"]["source"]
+    assert r["claims"]["star_radius"] == "4.22"
+    capped = delcert.refine(spec, eps="4.22", seed=1, threads=THREADS, max_points=40)
+    assert not capped["converged"]
+    assert capped["report"]["stop_reason"] == "max_points"
+    assert len(capped["points"]) == 40

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "core/refine/simplex_measures.hpp"
@@ -268,6 +270,66 @@ TEST(Refiner, CapsStopTheRunAndSaySo) {
   EXPECT_FALSE(r2.converged);
   EXPECT_EQ(r2.stop_reason, StopReason::max_rounds);
   EXPECT_EQ(r2.rounds, 1u);
+}
+
+// Issue 15 item 1: at ε = 2 on the torus of revolution (R = 2, r = 1) the first rounds stalled
+// (ψ_p misses the Delaunay balls, stars stay open). The practical mode shrinks ε locally instead
+// and converges; every star cell at p is below p's local ε, and the protection and sparsity hold
+// with the smallest local ε, ε / 2^eps_level (recomputed here from a fresh complex). Paper mode
+// has one ε and still stalls there.
+TEST(Refiner, CoarseEpsShrinksLocallyInsteadOfStalling) {
+  manifold::Manifold M = builtin("torus-of-revolution");
+  auto pts = net(M, 2.0);
+  RefineParameters p;
+  p.constants.eps = exact("2");
+  auto r = refine(M, pts, p);
+  ASSERT_TRUE(r.converged) << to_string(r.stop_reason);
+  EXPECT_GT(r.eps_level, 0);
+  EXPECT_FALSE(r.eps_sites.empty());
+  std::size_t shrinks = 0;
+  for (const auto& s : r.rules.values) shrinks += s.shrinks;
+  EXPECT_EQ(shrinks, r.eps_sites.size());
+  ASSERT_EQ(r.local_eps.size(), r.points.size());
+  const double eps_min = std::ldexp(2.0, -r.eps_level);
+  for (double e : r.local_eps) {
+    EXPECT_LE(e, 2.0);
+    EXPECT_GE(e, eps_min);
+  }
+  auto planes = tangential::compute_tangent_planes(M, r.points);
+  tangential::TangentialComplex tc(r.points, planes);
+  EXPECT_TRUE(tc.assemble().inconsistent.empty());
+  const ConstantsAsDoubles P = as_doubles(r.parameters.constants);
+  const double dcheck2 = P.delta0 * P.delta0 * (eps_min / 9) * (eps_min / 9);
+  for (std::size_t q = 0; q < tc.size(); ++q) {
+    const auto& st = tc.star(q);
+    ASSERT_TRUE(st.closed);
+    for (std::size_t c = 0; c < st.size(); ++c) {
+      EXPECT_LT(st.radii2[c], r.local_eps[q] * r.local_eps[q]);
+      const auto cell = st.cell(c);
+      for (std::size_t x = 0; x < r.points.size(); ++x) {
+        if (std::count(cell.begin(), cell.end(), static_cast<int>(x))) continue;
+        double d2 = 0;
+        for (int j = 0; j < 3; ++j) d2 += (r.points.point(x)[j] - st.centre(c)[j]) * (r.points.point(x)[j] - st.centre(c)[j]);
+        EXPECT_GT(d2 - st.radii2[c], dcheck2);
+      }
+    }
+  }
+  EXPECT_GT(r.final.min_distance, eps_min / 9);
+
+  p.mode = RefineMode::paper;
+  auto paper = refine(M, pts, p);
+  EXPECT_FALSE(paper.converged);
+  EXPECT_EQ(paper.stop_reason, StopReason::stalled);
+  EXPECT_EQ(paper.eps_level, 0);
+  EXPECT_TRUE(paper.eps_sites.empty());
+
+  // The points cap: the run stops with the points it has, and says so.
+  p.mode = RefineMode::practical;
+  p.max_points = pts.size() + 10;
+  auto capped = refine(M, pts, p);
+  EXPECT_EQ(capped.stop_reason, StopReason::max_points);
+  EXPECT_EQ(capped.points.size(), pts.size() + 10);
+  EXPECT_NE(std::string(advice(StopReason::max_points)).find("--max-points"), std::string::npos);
 }
 
 TEST(Refiner, ParametersAreValidated) {
