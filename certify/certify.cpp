@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
-#include <malloc.h>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -950,7 +949,6 @@ Certificate run_certify(const CertifyOptions& o) {
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
   C.inputs = inputs_json(in, o);
   std::string().swap(in.points_text), std::string().swap(in.complex_text);  // hashed: not read again
-  malloc_trim(0);  // the pages of the readers' temporaries back to the system (1M points: ~450 MB)
   C.conventions = conventions_json();
   C.parameters = parameters_json(in);
 
