@@ -195,50 +195,58 @@ json parameters_json(const Inputs& in) {
 // ---- Stars (read by checks 3, 4, 6, 7 and 10) ------------------------------------------------
 
 struct Stars {
-  bool verify = false;                        // a complex was given (else: audit mode)
-  std::vector<std::vector<Simplex>> claimed;  // per point: the given m-simplices at it, sorted (freed once verified)
-  std::vector<Simplex> wrong_dimension;       // given simplices of another dimension, sorted
-  std::vector<StarReport> reports;            // per point: star(p), exactly or why not
-  io::Complex complex;        // audit mode: the union of the stars, what the global checks look at
-  std::vector<Simplex> tops;  // its m-simplices, each sorted (given: in file order; audit: sorted, unique)
+  bool verify = false;                               // a complex was given (else: audit mode)
+  std::vector<Simplex> wrong_dimension;              // given simplices of another dimension, sorted
+  std::vector<StarReport> reports;                   // per point: star(p), exactly or why not
+  io::Complex complex;                               // audit mode: the union of the stars, what the global checks look at
+  std::vector<Simplex> sorted;                       // verify mode: the given m-simplices, each sorted, in file order,
+  const std::vector<Simplex>* given_tops = nullptr;  // or the given simplices themselves when they are just that
+  std::vector<long> first;                           // verify mode: tops()[at[i]], first[p] <= i < first[p + 1], contain p
+  std::vector<int> at;
+  // The m-simplices, each sorted (given: in file order; audit: sorted, unique)
+  const std::vector<Simplex>& tops() const { return given_tops ? *given_tops : verify ? sorted : complex.simplices; }
+  std::vector<Simplex> claimed(std::size_t p) const {  // the given m-simplices at p, in file order
+    std::vector<Simplex> c;
+    for (long i = first[p]; i < first[p + 1]; ++i) c.push_back(tops()[at[i]]);
+    return c;
+  }
 };
 
-Stars analyse_stars(const std::optional<io::Complex>& given, const StarSettings& S, int threads,
+Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads,
                     std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress) {
   const std::size_t n = S.points->size();
   const int m = S.m;
   Stars st;
-  st.verify = given.has_value();
-  st.claimed.resize(n);
-  if (given)
-    for (const auto& s0 : given->simplices) {
-      Simplex s = s0;
-      std::sort(s.begin(), s.end());
-      if (static_cast<int>(s.size()) != m + 1) {
-        st.wrong_dimension.push_back(s);
-        continue;
+  st.verify = given != nullptr;
+  st.first.assign(n + 1, 0);
+  if (given) {  // (the global checks read *given itself)
+    if (std::all_of(given->simplices.begin(), given->simplices.end(), [&](const Simplex& s) {
+          return static_cast<int>(s.size()) == m + 1 && std::is_sorted(s.begin(), s.end()); }))
+      st.given_tops = &given->simplices;  // no copy (1M points: 112 MB)
+    else
+      for (Simplex s : given->simplices) {
+        std::sort(s.begin(), s.end());
+        (static_cast<int>(s.size()) != m + 1 ? st.wrong_dimension : st.sorted).push_back(std::move(s));
       }
-      for (int v : s) st.claimed[v].push_back(s);
-    }
+    for (const auto& s : st.tops())  // counting sort of the (simplex, vertex) incidences by vertex
+      for (int v : s) ++st.first[v + 1];
+    for (std::size_t p = 0; p < n; ++p) st.first[p + 1] += st.first[p];
+    st.at.resize(st.first[n]);
+    std::vector<long> next(st.first.begin(), st.first.end() - 1);
+    for (std::size_t i = 0; i < st.tops().size(); ++i)
+      for (int v : st.tops()[i]) st.at[next[v]++] = static_cast<int>(i);
+  }
   st.reports.resize(n);
   detail::parallel_for(n, threads, [&](std::size_t p, int w) {
-    st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &st.claimed[p] : nullptr, ctx[w]);
+    const std::vector<Simplex> claimed = given ? st.claimed(p) : std::vector<Simplex>();
+    st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed : nullptr, ctx[w]);
     if (progress) progress->add();
-    if (st.reports[p].claimed_verified) std::vector<Simplex>().swap(st.claimed[p]);  // reports[p].star holds them
   });
-  if (given) {  // (the global checks read *given itself)
-    for (const auto& s0 : given->simplices)
-      if (static_cast<int>(s0.size()) == m + 1) {
-        Simplex s = s0;
-        std::sort(s.begin(), s.end());
-        st.tops.push_back(s);
-      }
-  } else {
+  if (!given) {
+    auto& K = st.complex.simplices;
     for (const auto& r : st.reports)
-      for (const auto& c : r.star) st.tops.push_back(c.simplex);
-    std::sort(st.tops.begin(), st.tops.end());
-    st.tops.erase(std::unique(st.tops.begin(), st.tops.end()), st.tops.end());
-    st.complex.num_vertices = n, st.complex.simplices = st.tops;
+      for (const auto& c : r.star) K.push_back(c.simplex);
+    std::sort(K.begin(), K.end()), K.erase(std::unique(K.begin(), K.end()), K.end()), st.complex.num_vertices = n;
   }
   return st;
 }
@@ -260,7 +268,8 @@ CheckEntry check_stars(const Stars& st, int m) {
       continue;
     }
     if (!st.verify || r.claimed_verified) continue;
-    std::set<Simplex> have(st.claimed[r.p].begin(), st.claimed[r.p].end());
+    std::set<Simplex> have;
+    for (auto& s : st.claimed(r.p)) have.insert(std::move(s));
     for (const auto& c : r.star)
       if (!have.count(c.simplex)) {
         ++missing;
@@ -275,7 +284,7 @@ CheckEntry check_stars(const Stars& st, int m) {
       }
   }
   if (st.verify) {
-    for (const auto& s : st.tops) {
+    for (const auto& s : st.tops()) {
       Tri in_a_star = Tri::no;
       for (int v : s) in_a_star = either(in_a_star, member(st.reports[v], s));
       if (in_a_star == Tri::yes) continue;
@@ -304,7 +313,7 @@ CheckEntry check_stars(const Stars& st, int m) {
                                   std::to_string(st.wrong_dimension.size()) + " wrong-dimension simplices; " +
                                   std::to_string(undetermined) + " stars undetermined"
                             : "star(p) computed exactly for " + std::to_string(n - undetermined) + " of " +
-                                  std::to_string(n) + " points (" + std::to_string(st.tops.size()) + " m-simplices)";
+                                  std::to_string(n) + " points (" + std::to_string(st.tops().size()) + " m-simplices)";
   return stars;
 }
 
@@ -313,7 +322,7 @@ CheckEntry check_stars(const Stars& st, int m) {
 CheckEntry check_consistency(const Stars& st, const StarSettings& S, exact::FilterContext& ctx) {
   CheckEntry cons(CheckId::consistency);
   long inconsistent = 0;
-  for (const auto& s : st.tops) {
+  for (const auto& s : st.tops()) {
     bool bad = false;
     for (int v : s) {
       const Tri mv = member(st.reports[v], s);
@@ -333,9 +342,9 @@ CheckEntry check_consistency(const Stars& st, const StarSettings& S, exact::Filt
       }
     }
   }
-  cons.details["m_simplices"] = st.tops.size();
+  cons.details["m_simplices"] = st.tops().size();
   cons.details["inconsistent_simplices"] = inconsistent;
-  cons.summary = std::to_string(st.tops.size() - inconsistent) + " of " + std::to_string(st.tops.size()) +
+  cons.summary = std::to_string(st.tops().size() - inconsistent) + " of " + std::to_string(st.tops().size()) +
                  " m-simplices are in the star of every vertex";
   return cons;
 }
@@ -728,8 +737,7 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
     }
     // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
     // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
-    for (const auto& s0 : given->simplices) {
-      Simplex s = s0;
+    for (Simplex s : given->simplices) {
       std::sort(s.begin(), s.end());
       if (static_cast<int>(s.size()) == m + 1) continue;
       bool face = false;
@@ -851,8 +859,7 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
           im.refute("a simplex of the complex is not in Del_M(P)");
           im.add_witness(r.witness);
         }
-      for (const auto& s0 : given->simplices) {
-        Simplex s = s0;
+      for (Simplex s : given->simplices) {
         std::sort(s.begin(), s.end());
         const bool top = static_cast<int>(s.size()) == m + 1;
         bool face = top;
@@ -986,7 +993,7 @@ Certificate run_certify(const CertifyOptions& o) {
   std::optional<RadiusResult> radius;
   if (on_M) {
     phase("check 3 stars", P.size());
-    stars = analyse_stars(tangential_kind ? in.given : std::nullopt, S, threads, ctx, o.progress);
+    stars = analyse_stars(tangential_kind ? &*in.given : nullptr, S, threads, ctx, o.progress);
     watch.record(C, "stars");
     stars_entry = check_stars(*stars, m);
     consistency = check_consistency(*stars, S, ctx_consistency);
@@ -1079,9 +1086,8 @@ Certificate run_certify(const CertifyOptions& o) {
         if (r.state == StarReport::State::proven)
           for (const auto& c : r.star) candidates.push_back(c.simplex);
     if (in.given)
-      for (const auto& s0 : in.given->simplices)
-        if (static_cast<int>(s0.size()) == m + 1) {
-          Simplex s = s0;
+      for (Simplex s : in.given->simplices)
+        if (static_cast<int>(s.size()) == m + 1) {
           std::sort(s.begin(), s.end());
           if (std::adjacent_find(s.begin(), s.end()) == s.end()) candidates.push_back(s);
         }

@@ -549,6 +549,7 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
 Verification verify(const StarSettings& S, const Local& L, const std::vector<List>& cells, exact::FilterContext& ctx) {
   Verification V;
   bool any_degenerate = false;
+  V.cells.reserve(cells.size());  // kept as the star (1M points: 256 bytes a point less than by doubling)
   for (const List& c : cells) {
     V.cells.push_back(test_list(S, L, c, V.need_radius, ctx));
     any_degenerate = any_degenerate || V.cells.back().degenerate;
@@ -576,6 +577,7 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
   for (int i = 0; i < N; ++i)
     for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T.basis(i, a)));
   const std::vector<IA> G = gram_enclosure(T, m);
+  out.basis_enclosure.reserve(U.size()), out.gram_enclosure.reserve(G.size());
   for (const IA& x : U) out.basis_enclosure.push_back(to_interval(x));  // for check 7 (no second exact basis)
   for (const IA& x : G) out.gram_enclosure.push_back(to_interval(x));
   auto dist = [&](int g) {

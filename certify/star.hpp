@@ -55,20 +55,20 @@ struct StarSettings {
   std::optional<mpq_class> eps;               // claimed eps: every R_p(s) < eps
 };
 
-// One cell {p, ...} tested at p.
+// One cell {p, ...} tested at p (its fields ordered without padding: every star's cells stay in memory until check 7).
 struct CellReport {
   Simplex simplex;
-  bool degenerate = false;                 // projection to T_p affinely dependent (no centre)
-  int conflict = -1;                       // a point strictly inside B(c, R), if any
-  exact::Interval conflict_power{};        // enclosure of |c - q|^2 - R^2 (< 0) for it
-  int tie = -1;                            // a point exactly on the sphere, if any
+  exact::Interval conflict_power{};        // enclosure of |c - q|^2 - R^2 (< 0) for `conflict`
   exact::Interval radius2{};               // enclosure of R_p(s)^2
   exact::Interval margin{};                // enclosure of min_{q not in s} |c - q|^2 - R^2
+  exact::Interval protection_power{};      // enclosure of |c - q|^2 - R^2 for `protection_point`
+  int conflict = -1;                       // a point strictly inside B(c, R), if any
+  int tie = -1;                            // a point exactly on the sphere, if any
   int margin_point = -1;                   // the q attaining the smallest lower bound
   int protection_point = -1;               // a q with |c - q|^2 - R^2 <= claim, if any
   int protection_sign = 1;                 // its exact sign of |c - q|^2 - R^2 - claim
-  exact::Interval protection_power{};      // enclosure of |c - q|^2 - R^2 for it
   int eps_sign = -1;                       // exact sign(R^2 - eps^2) (when eps is claimed)
+  bool degenerate = false;                 // projection to T_p affinely dependent (no centre)
   bool empty() const { return !degenerate && conflict < 0 && tie < 0; }
 };
 

@@ -105,8 +105,7 @@ FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal) {
     L.dimension = std::max(L.dimension, static_cast<int>(s.size()) - 1);
   }
   L.flat.assign(std::max(0, L.dimension + 1), {});
-  for (const auto& s0 : maximal) {
-    std::vector<int> s = s0;
+  for (auto s : maximal) {
     std::sort(s.begin(), s.end());
     const int n = static_cast<int>(s.size());
     for (unsigned mask = 1; mask < (1u << n); ++mask) {
@@ -332,8 +331,7 @@ Tri is_sphere(const std::vector<std::vector<int>>& simplices, int d, std::string
   // Every ridge in exactly two facets.
   if (d > 8) return fail("dimension above 8 is not supported");
   std::vector<std::array<int, 8>> ridges;
-  for (const auto& s0 : simplices) {
-    auto s = s0;
+  for (auto s : simplices) {
     std::sort(s.begin(), s.end());
     for (int i = 0; i <= d; ++i) {
       std::array<int, 8> r;
@@ -502,33 +500,31 @@ bool link_is_2_sphere(const std::vector<std::array<int, 3>>& tris, LinkScratch& 
 TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* lattice) {
   TopologyReport R;
   R.m = m;
-  std::vector<std::vector<int>> tops;
   bool too_big = false;
-  for (const auto& s0 : K.simplices) {
-    auto s = s0;
+  // Ridges of the m-simplices (numbered 0, 1, ... in file order) and the strongly connected components across them.
+  std::vector<std::pair<std::array<int, 8>, long>> ridge_of;  // (ridge padded with -1, simplex)
+  ridge_of.reserve(m <= 8 ? K.simplices.size() * (m + 1) : 0);
+  long tops = 0;
+  for (auto s : K.simplices) {
     std::sort(s.begin(), s.end());
     if (static_cast<int>(s.size()) != m + 1) {
       if (R.pure) R.impure_example = s;
       R.pure = false;
       too_big = too_big || static_cast<int>(s.size()) > m + 1;
-    } else {
-      tops.push_back(s);
+      continue;
     }
+    for (int i = 0; i <= m && m <= 8; ++i) {
+      std::array<int, 8> r;
+      r.fill(-1);
+      for (int t = 0, n = 0; t <= m; ++t)
+        if (t != i) r[n++] = s[t];
+      ridge_of.emplace_back(r, tops);
+    }
+    ++tops;
   }
-  // Ridges of the m-simplices and the strongly connected components across them.
-  std::vector<std::pair<std::array<int, 8>, long>> ridge_of;  // (ridge padded with -1, simplex)
-  if (m <= 8)
-    for (std::size_t j = 0; j < tops.size(); ++j)
-      for (int i = 0; i <= m; ++i) {
-        std::array<int, 8> r;
-        r.fill(-1);
-        for (int t = 0, n = 0; t <= m; ++t)
-          if (t != i) r[n++] = tops[j][t];
-        ridge_of.emplace_back(r, static_cast<long>(j));
-      }
   std::sort(ridge_of.begin(), ridge_of.end());
-  UnionFind uf(tops.size());
-  R.strong_components = static_cast<long>(tops.size());
+  UnionFind uf(tops);
+  R.strong_components = tops;
   for (auto a = ridge_of.begin(); a != ridge_of.end();) {
     auto b = std::find_if(a, ridge_of.end(), [&](const auto& r) { return r.first != a->first; });
     long c = static_cast<long>(b - a);
@@ -540,7 +536,7 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
     for (auto t = a + 1; t < b; ++t) R.strong_components -= uf.unite(a->second, t->second);
     a = b;
   }
-  std::vector<std::vector<int>>().swap(tops), decltype(ridge_of)().swap(ridge_of);  // freed before the links and Betti numbers
+  decltype(ridge_of)().swap(ridge_of);  // freed before the links and Betti numbers
   // Vertex links.
   std::vector<std::vector<long>> incident(K.num_vertices);
   for (std::size_t j = 0; j < K.simplices.size(); ++j)
