@@ -23,17 +23,6 @@ namespace {
 using Simplex = std::vector<int>;
 using Quaternions = std::vector<std::array<double, 4>>;
 
-IntrinsicDelaunay del_m(const io::ManifoldSpec& spec, const io::PointSet& P, const std::vector<Simplex>& candidates) {
-  const detail::PointGrid grid(P, spec.intrinsic_dimension);
-  return compute_intrinsic_delaunay(spec, P, grid, candidates, 2);
-}
-
-std::set<Simplex> simplices(const IntrinsicDelaunay& D) {
-  std::set<Simplex> s;
-  for (const auto& x : D.simplices) s.insert(x.simplex);
-  return s;
-}
-
 // The reference: the facets of conv{+-q_i} (the full cells of the Delaunay triangulation of the
 // lifted points that hold its infinite vertex), as sets of point indices.
 std::set<Simplex> hull_reference(const Quaternions& q) {

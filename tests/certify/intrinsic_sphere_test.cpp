@@ -29,17 +29,6 @@ std::vector<Simplex> all_triples(int n) {
   return t;
 }
 
-IntrinsicDelaunay del_m(const io::ManifoldSpec& spec, const io::PointSet& P, const std::vector<Simplex>& candidates) {
-  const detail::PointGrid grid(P, spec.intrinsic_dimension);
-  return compute_intrinsic_delaunay(spec, P, grid, candidates, 2);
-}
-
-std::set<Simplex> simplices(const IntrinsicDelaunay& D) {
-  std::set<Simplex> s;
-  for (const auto& x : D.simplices) s.insert(x.simplex);
-  return s;
-}
-
 // The side of r relative to the plane through the projections of a, b, c (long double, for
 // re-checking witnesses whose margins are far above rounding).
 int side(const io::PointSet& P, const Simplex& s, int r) {

@@ -18,6 +18,7 @@
 
 #include "certify/certify.hpp"
 #include "certify/detail/grid.hpp"
+#include "certify/intrinsic.hpp"
 #include "certify/star.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/complex.hpp"
@@ -135,6 +136,18 @@ inline io::PointSet so3_net(int candidates, double min_dist, std::uint64_t seed,
     if (quaternions) quaternions->push_back({w, x, y, z});
   }
   return make_points(9, pts);
+}
+
+// Del_M (certify/intrinsic.hpp) of P from `candidates` on 2 threads, and its certified m-simplices.
+inline IntrinsicDelaunay del_m(const io::ManifoldSpec& spec, const io::PointSet& P,
+                               const std::vector<std::vector<int>>& candidates) {
+  const detail::PointGrid grid(P, spec.intrinsic_dimension);
+  return compute_intrinsic_delaunay(spec, P, grid, candidates, 2);
+}
+inline std::set<std::vector<int>> simplices(const IntrinsicDelaunay& D) {
+  std::set<std::vector<int>> s;
+  for (const auto& x : D.simplices) s.insert(x.simplex);
+  return s;
 }
 
 // A near-equilateral triangular lattice on the flat torus S^1 x S^1 in R^4: `cols` points per

@@ -37,28 +37,8 @@ TEST_P(RefineThenCertify, RefinedOutputIsCertifiedWithItsClaims) {
   // SO(3) (m = 3 in R^9, codimension 6): the certified restricted Voronoi diagram takes minutes
   // per hundred points today (issue 11's closing note), so its checks are skipped here.
   const std::string skip = std::string(c.manifold) == "so3" ? " --skip-restricted" : "";
-  auto cert = run(binary("delcert-certify") + " --manifold " + spec + " --points " + out + "/points.txt --complex " +
-                  out + "/complex.txt --claims " + out + "/claims.json --out " + dir.file("certificate.json") + skip);
-  // UNDECIDED (3) only where Del_M cannot be computed (no closed-form metric: the torus of
-  // revolution; expect_refined_certificate says which checks may be undecided and why).
-  ASSERT_TRUE(cert.status == 0 || cert.status == 1 || cert.status == 3) << cert.output;
-  auto certificate = nlohmann::json::parse(test::slurp(dir.file("certificate.json")));
-  test::expect_refined_certificate(certificate, io::read_points(out + "/points.txt"));
-  // Every claim was turned into a check (certified, above), and the topology is M's.
-  int checked = 0;
-  for (const auto& check : certificate.at("checks")) {
-    const std::string name = check.at("name");
-    if (name == "sparsity" || name == "thickness" || name == "power_protection" || name == "star_radius" ||
-        name == "stars" || name == "consistency" || name == "topology" || name == "covering" ||
-        name == "restricted_delaunay") {
-      ++checked;
-      EXPECT_EQ(check.at("verdict"), skip.empty() || (name.find("restricted") == std::string::npos && name != "covering")
-                                         ? "CERTIFIED"
-                                         : "REPORT")
-          << name;
-    }
-  }
-  EXPECT_EQ(checked, 9);
+  const test::RefinedRun cert = test::certify_refined_output(spec, out, dir.file("certificate.json"), !skip.empty());
+  const auto& certificate = cert.certificate;
   // Overall CERTIFIED when every equality is decided as true (checks 13 and 15; 14-15 are
   // "not computed" for the torus of revolution, which has no closed-form metric).
   const auto& checks = certificate.at("checks");

@@ -55,23 +55,8 @@ TEST_P(RefineUnevenCurvature, ConvergesFromACoarseEpsAndIsCertified) {
   // without a reach), so its checks 11-13 are skipped here as for SO(3) in
   // refine_then_certify_test.cpp; with them it was measured CERTIFIED (check 13 REFUTED, as below).
   const std::string skip = c.restricted ? "" : " --skip-restricted";
-  auto cert = run(binary("delcert-certify") + " --manifold " + spec + " --points " + out + "/points.txt --complex " +
-                  out + "/complex.txt --claims " + out + "/claims.json --out " + dir.file("certificate.json") + skip);
-  ASSERT_TRUE(cert.status == 0 || cert.status == 1 || cert.status == 3) << cert.output;
-  auto certificate = nlohmann::json::parse(test::slurp(dir.file("certificate.json")));
-  test::expect_refined_certificate(certificate, io::read_points(out + "/points.txt"));
-  int checked = 0;
-  for (const auto& check : certificate.at("checks")) {
-    const std::string name = check.at("name");
-    if (name == "sparsity" || name == "thickness" || name == "power_protection" || name == "star_radius" ||
-        name == "stars" || name == "consistency" || name == "topology" || name == "covering" ||
-        name == "restricted_delaunay") {
-      ++checked;
-      const bool skipped = !c.restricted && (name == "covering" || name == "restricted_delaunay");
-      EXPECT_EQ(check.at("verdict"), skipped ? "REPORT" : "CERTIFIED") << name << ": " << check.at("summary");
-    }
-  }
-  EXPECT_EQ(checked, 9);
+  const test::RefinedRun cert = test::certify_refined_output(spec, out, dir.file("certificate.json"), !skip.empty());
+  const auto& certificate = cert.certificate;
   if (!c.restricted) {
     EXPECT_EQ(certificate.at("verdict"), "CERTIFIED") << cert.output;
   }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "io/points.hpp"
+#include "tests/test_support.hpp"
 
 namespace delcert::test {
 
@@ -70,6 +71,38 @@ inline void expect_refined_certificate(const nlohmann::json& certificate, const 
     std::printf("%s refuted: %s (%d vertex witnesses re-checked)\n", name.c_str(),
                 check.at("summary").get<std::string>().c_str(), rechecked);
   }
+}
+
+// Runs delcert-certify on a `delcert refine` output directory with its own claims (with
+// --skip-restricted when `skip_restricted`), checks the certificate as above, and checks that every
+// claim turned into a check, the stars, consistency, topology, covering and Del_RM checks, is
+// CERTIFIED (REPORT for covering and Del_RM when skipped). Returns the certificate and the output.
+struct RefinedRun {
+  nlohmann::json certificate;
+  std::string output;
+};
+inline RefinedRun certify_refined_output(const std::string& spec, const std::string& out, const std::string& certificate,
+                                         bool skip_restricted) {
+  auto cert = run(binary("delcert-certify") + " --manifold " + spec + " --points " + out + "/points.txt --complex " + out +
+                  "/complex.txt --claims " + out + "/claims.json --out " + certificate +
+                  (skip_restricted ? " --skip-restricted" : ""));
+  // UNDECIDED (3) only where Del_M cannot be computed (expect_refined_certificate says which).
+  EXPECT_TRUE(cert.status == 0 || cert.status == 1 || cert.status == 3) << cert.output;
+  RefinedRun r{nlohmann::json::parse(slurp(certificate)), cert.output};
+  expect_refined_certificate(r.certificate, io::read_points(out + "/points.txt"));
+  int checked = 0;
+  for (const auto& check : r.certificate.at("checks")) {
+    const std::string name = check.at("name");
+    if (name == "sparsity" || name == "thickness" || name == "power_protection" || name == "star_radius" ||
+        name == "stars" || name == "consistency" || name == "topology" || name == "covering" ||
+        name == "restricted_delaunay") {
+      ++checked;
+      const bool skipped = skip_restricted && (name == "covering" || name == "restricted_delaunay");
+      EXPECT_EQ(check.at("verdict"), skipped ? "REPORT" : "CERTIFIED") << name << ": " << check.at("summary");
+    }
+  }
+  EXPECT_EQ(checked, 9);
+  return r;
 }
 
 }  // namespace delcert::test
