@@ -132,11 +132,12 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
     for (const auto& f : g.factors)
       factors += (factors.empty() ? "" : " x ") +
                  (f.kind == io::ShapeFactor::Kind::so3 ? std::string("SO(3)") : "S^" + std::to_string(f.dimension()));
-    if (in_order(g.factors) && g.factors.size() == 1 && g.factors[0].kind == io::ShapeFactor::Kind::sphere) {
+    const bool ordered = in_order(g.factors), one = g.factors.size() == 1;
+    if (ordered && one && g.factors[0].kind == io::ShapeFactor::Kind::sphere) {
       g.kind = io::ShapeSpec::Kind::sphere, g.center.assign(N, mpq_class(0)), g.radius = g.factors[0].radius;
-    } else if (in_order(g.factors) && g.factors.size() == 1) {
+    } else if (ordered && one) {
       g.kind = io::ShapeSpec::Kind::so3;
-    } else if (in_order(g.factors) && circles) {
+    } else if (ordered && circles) {
       g.kind = io::ShapeSpec::Kind::product_of_circles;
       for (const auto& f : g.factors) g.radii.push_back(f.radius);
     } else {

@@ -96,10 +96,7 @@ HullDecision decide_facet(const LiftedSphere& S, const std::vector<int>& facet) 
   }
   if (d.both_sides[0] >= 0 && d.both_sides[1] >= 0) {
     d.kind = HullDecision::Kind::rejected;
-  } else if (tie >= 0 || unknown >= 0) {
-  } else if (d.tested + (d.untested >= 0 ? 1 : 0) == 0) {
-    d.alone = true;
-  } else {
+  } else if (tie < 0 && unknown < 0 && d.tested + (d.untested >= 0 ? 1 : 0) > 0) {
     d.kind = HullDecision::Kind::certified;
     d.empty_cap_small = d.centre_side != 0 && ((d.centre_side > 0) == (d.both_sides[0] >= 0));
   }

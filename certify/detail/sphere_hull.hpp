@@ -98,11 +98,11 @@ struct HullDecision {
   int both_sides[2] = {-1, -1};  // rejected: an id strictly on the positive / negative side
   int untested = -1;             // an id not tested, strictly on the origin's side (or -1)
   int tie = -1, unknown = -1;    // undecided: an id exactly on H(s) / whose side was not decided
+                                 // (neither: undecided because no other id decides the side)
   long tested = 0;               // ids tested
   int centre_side = 0;
   bool empty_cap_small = false;  // certified: the empty cap is the one not holding the origin
   double radius = INFINITY;      // the test radius used
-  bool alone = false;            // undecided: no other id to decide the side of the empty cap
 };
 
 // The sorted id set, or its antipodal image when that is lexicographically smaller.
