@@ -589,6 +589,20 @@ json vertex_witness(const RestrictedSimplex& s) {
                      "Del_RM(P)"}};
 }
 
+// A simplex of Del_RM(P) of dimension < m that no m-simplex found contains (a face point, rvd.hpp).
+json face_witness(const RestrictedSimplex& s, bool complete) {
+  return {{"kind", "face_point"},
+          {"simplex", s.simplex},
+          {"found_at", s.found_at},
+          {"point_enclosure", box_json(s.vertex.x)},
+          {"detail", std::string("Krawczyk proves a point of M in this box equidistant from the simplex's points, and "
+                                 "every other sample point is certainly farther from every point of the box: the "
+                                 "simplex is in Del_RM(P); ") +
+                         (complete ? "Del_RM(P) is known completely and no m-simplex of it contains this simplex: "
+                                     "Del_RM(P) is not pure"
+                                   : "no m-simplex found contains it")}};
+}
+
 json location_json(const std::vector<double>& x) {
   json j = json::array();
   for (double v : x) j.push_back(num(v));
@@ -718,9 +732,11 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (impure.size() < 10) impure.push_back({{"face", f.candidates}, {"at_point", c.point},
                                                {"location", location_json(f.location)}, {"why", f.reason}});
     }
-  if (unresolved)
+  if (unresolved || (!R.lower_faces.empty() && !R.covering_certified))
     rd.undecide("Del_RM(P) may not be pure: a restricted Voronoi face of dimension > 0 may hold no vertex (see "
-                "details.possibly_impure)");
+                "details.possibly_impure and the face_point witnesses)");
+  if (!R.lower_faces.empty() && R.covering_certified) rd.refute("Del_RM(P) is not pure: a simplex of it is in no m-simplex");
+  for (const auto& f : R.lower_faces) rd.add_witness(face_witness(f, R.covering_certified));
   for (const auto& f : R.cross_check_failures)
     rd.add_witness({{"kind", "cross_check_failure"}, {"simplex", f.simplex}, {"found_at", f.found_at},
                     {"missed_at", f.missed_at}});
@@ -735,6 +751,17 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
       rd.add_witness(vertex_witness(s));
     }
+    for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
+      bool face = false;
+      for (const auto& g : given->simplices) {
+        Simplex t = g;
+        std::sort(t.begin(), t.end());
+        face = face || std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
+      }
+      if (face) continue;
+      ++missing;
+      rd.refute("a simplex of Del_RM(P) is missing from the complex");
+    }
     // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
     // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
     for (Simplex s : given->simplices) {
@@ -746,6 +773,8 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
           face = true;
           break;
         }
+      for (const auto& f : R.lower_faces)  // a face of a proven lower simplex of Del_RM
+        face = face || std::includes(f.simplex.begin(), f.simplex.end(), s.begin(), s.end());
       if (face && static_cast<int>(s.size()) < m + 1) continue;
       ++extra;
       if (!R.covering_certified || unresolved) continue;  // not proven absent
@@ -766,12 +795,17 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
     }
     rd.claim = {{"kind", "restricted"}, {"meaning", "the complex is the restricted Delaunay complex Del_RM(P)"}};
   }
+  const bool known = R.covering_certified && !unresolved;
   rd.details = {{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
-                {"possibly_impure_faces", unresolved}, {"possibly_impure", impure}};
+                {"possibly_impure_faces", unresolved}, {"possibly_impure", impure},
+                {"lower_faces_in_no_m_simplex", R.lower_faces.size()},
+                {"pure", R.covering_certified && !R.lower_faces.empty() ? json(false) : known ? json(true) : json(nullptr)}};
   if (claimed && given) rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
   rd.summary = std::to_string(R.simplices.size()) + " m-simplices of Del_RM(P) certified" +
                (R.covering_certified ? " (all of them)" : " (maybe not all)") +
-               (unresolved ? "; purity not proven" : "") +
+               (R.covering_certified && !R.lower_faces.empty() ? "; not pure: " + std::to_string(R.lower_faces.size()) +
+                                                                     " simplices of lower dimension in no m-simplex"
+                : unresolved || !R.lower_faces.empty() ? "; purity not proven" : "") +
                (claimed && given ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
                                        " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
                                  : "");

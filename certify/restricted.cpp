@@ -101,8 +101,15 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   }
 
   // Assemble: the simplices (first certified vertex of each), the covering bound, the cross-check.
-  std::map<std::vector<int>, RestrictedSimplex> found;
+  std::map<std::vector<int>, RestrictedSimplex> found, faces;
   R.min_radius = INFINITY;
+  auto distance_lower = [&](const RestrictedVoronoiVertex& v, int p) {
+    exact::UpwardRounding up;
+    exact::IntervalNumber d(0);  // |x - p|^2 over the enclosure: d(x, P) = |x - p|
+    for (std::size_t i = 0; i < v.x.size(); ++i)
+      d += exact::square(exact::to_interval_number(v.x[i]) - exact::IntervalNumber(P.point(p)[i]));
+    return exact::sqrt(d).inf();
+  };
   for (int p = 0; p < n; ++p) {
     const RestrictedCellReport& cell = R.cells[p];
     R.boxes += cell.boxes, R.krawczyk_calls += cell.krawczyk_calls, R.krawczyk_failures += cell.krawczyk_failures;
@@ -112,15 +119,20 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     if (cell.covering_bound > R.covering || R.covering_point < 0) R.covering = cell.covering_bound, R.covering_point = p;
     for (const auto& v : cell.vertices) {
       if (found.count(v.simplex)) continue;
-      exact::UpwardRounding up;
-      exact::IntervalNumber d(0);  // |x - p|^2 over the enclosure: d(vertex, P) = |vertex - p|
-      for (std::size_t i = 0; i < v.x.size(); ++i)
-        d += exact::square(exact::to_interval_number(v.x[i]) - exact::IntervalNumber(P.point(p)[i]));
-      const double lower = exact::sqrt(d).inf();
+      const double lower = distance_lower(v, p);
       found.emplace(v.simplex, RestrictedSimplex{v.simplex, p, v, lower});
       R.vertex_distance_lower = std::max(R.vertex_distance_lower, lower);
     }
+    for (const auto& v : cell.face_points)
+      if (!faces.count(v.simplex)) faces.emplace(v.simplex, RestrictedSimplex{v.simplex, p, v, distance_lower(v, p)});
   }
+  auto covered = [](const std::vector<int>& f, const auto& simplices) {  // a proper face of one of them?
+    return std::any_of(simplices.begin(), simplices.end(), [&](const auto& e) {
+      return e.first.size() > f.size() && std::includes(e.first.begin(), e.first.end(), f.begin(), f.end());
+    });
+  };
+  for (const auto& [f, rs] : faces)
+    if (!covered(f, found) && !covered(f, faces)) R.lower_faces.push_back(rs);
   for (auto& [s, rs] : found) {
     for (int q : s) {
       if (q == rs.found_at || !R.cells[q].complete) continue;

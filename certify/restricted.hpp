@@ -56,9 +56,9 @@ struct RestrictedDelaunayOptions {
 };
 
 struct RestrictedSimplex {
-  std::vector<int> simplex;        // sorted, m + 1 points
+  std::vector<int> simplex;        // sorted, m + 1 points (fewer in lower_faces)
   int found_at = -1;               // the point whose cell certified it
-  RestrictedVoronoiVertex vertex;  // its certified vertex (an enclosure of a point of M)
+  RestrictedVoronoiVertex vertex;  // its certified vertex (an enclosure of a point of M) or face point
   double distance_lower = 0;       // certified lower bound of d(vertex, P) = |vertex - found_at|
 };
 
@@ -70,6 +70,10 @@ struct CrossCheckFailure {
 struct RestrictedDelaunay {
   std::vector<RestrictedCellReport> cells;  // per point
   std::vector<RestrictedSimplex> simplices; // the m-simplices found, sorted by simplex, unique
+  // Simplices of dimension < m proven in Del_RM(P) by a face point (rvd.hpp), each a face of no
+  // simplex in `simplices` and of no larger one here, sorted. With covering_certified, Del_RM(P)
+  // is not pure: every m-simplex is in `simplices`.
+  std::vector<RestrictedSimplex> lower_faces;
   std::vector<CrossCheckFailure> cross_check_failures;
   std::vector<int> incomplete_points;       // cells not complete (see RestrictedCellReport::reason)
   double covering = 0;                      // c = max_p covering_bound_p (an upper bound where complete)

@@ -166,29 +166,26 @@ class CellAnalysis {
     }
   }
 
-  // Is every face C of K = {p} + S with p in C and 2 <= |C| <= m a face of a vertex simplex found
-  // so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure `face` is the
-  // first such C.
+  // Is every face C of K = {p} + S with p in C and |C| <= m a face of a vertex simplex or a face
+  // point found so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure
+  // `face` is the first such C, the larger faces first.
   bool faces_known(const std::vector<int>& S, std::vector<int>& face) const {
     const int n = static_cast<int>(S.size());
     if (n > m_) return false;  // only resolved boxes are asked (n <= m); 1 << n stays small
-    for (int mask = 1; mask < (1 << n); ++mask) {
-      if (__builtin_popcount(mask) + 1 > m_) continue;
-      std::vector<int> C{p_};
-      for (int i = 0; i < n; ++i)
-        if (mask >> i & 1) C.push_back(cands_[S[i]].index);
-      std::sort(C.begin(), C.end());
-      bool found = false;
-      for (const auto& v : report_.vertices)
-        if (std::includes(v.simplex.begin(), v.simplex.end(), C.begin(), C.end())) {
-          found = true;
-          break;
+    for (int size = std::min(n, m_ - 1); size >= 0; --size)
+      for (int mask = (1 << n) - 1; mask >= 0; --mask) {
+        if (__builtin_popcount(mask) != size) continue;
+        std::vector<int> C{p_};
+        for (int i = 0; i < n; ++i)
+          if (mask >> i & 1) C.push_back(cands_[S[i]].index);
+        std::sort(C.begin(), C.end());
+        auto holds = [&](const auto& v) { return std::includes(v.simplex.begin(), v.simplex.end(), C.begin(), C.end()); };
+        if (std::none_of(report_.vertices.begin(), report_.vertices.end(), holds) &&
+            std::none_of(report_.face_points.begin(), report_.face_points.end(), holds)) {
+          face = std::move(C);
+          return false;
         }
-      if (!found) {
-        face = std::move(C);
-        return false;
       }
-    }
     return true;
   }
 
@@ -539,7 +536,18 @@ class CellAnalysis {
       return;
     }
     std::vector<int> face;
-    const bool faces_ok = !resolved || n == 1 || faces_known(w.S, face);  // only read for resolved boxes
+    bool faces_ok = !resolved || n == 1 || faces_known(w.S, face);  // only read for resolved boxes
+    // Second pass (every vertex known): a face in doubt is sought as a FACE POINT, which settles it
+    // (and its faces) for good. Work only: a face in doubt only by a loose sign fails every search,
+    // so the search waits for boxes of 1/16 the covering width and gives up on a face after kFaceTries.
+    const bool seek = fine && refining_ && widest <= opt_.covering_width * rho_u_ / 16;
+    while (!faces_ok && seek && face_failures_[face] < kFaceTries) {
+      if (!prove_face(w.U, H, face)) {
+        ++face_failures_[face];
+        break;
+      }
+      faces_ok = faces_known(w.S, face);
+    }
     const bool purity_floor = widest <= opt_.purity_width * rho_u_;
     if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {
@@ -600,6 +608,61 @@ class CellAnalysis {
     return exact::max_affine_upper_bound(F.span(), S.span(), nq);
   }
 
+  // The row s_q = c - 2 a.u - 2 b.h of candidate C, by its enclosures (see Candidate); false when
+  // one overflowed (an infinite or NaN bound).
+  static bool affine_row(const Candidate& C, exact::SquareSystem::AffineEnclosure& row) {
+    row = {Interval{C.c.inf(), C.c.sup()}, {}};
+    for (const IA& a : C.a2) row.linear.push_back({-a.sup(), -a.inf()});
+    for (const IA& b : C.b2) row.linear.push_back({-b.sup(), -b.inf()});
+    return row.constant.is_finite() &&
+           std::all_of(row.linear.begin(), row.linear.end(), [](const Interval& i) { return i.is_finite(); });
+  }
+
+  // A FACE POINT for C = {p, q_1..q_j}, j < m (PURITY in rvd.hpp). Krawczyk on the square system
+  // {G(u, h) = 0, s_{q_i} = 0 (i = 1..j), u_a = c_a (a in A)}, for each set A of m - j chart axes,
+  // c_a the midpoint of U's side a (a double, so the row u_a - c_a is exact), in U x H with side a
+  // cut to an interval around c_a (the box needs an interior). A root proven (unique in the box,
+  // or by inflation next to it: either way it exists) is a point x of {F = 0} equidistant from the
+  // points of C; s > 0 on its image X and the direct check that every other point of P is
+  // strictly farther than p on X (separated) make C exactly the set of points of P nearest to x,
+  // a point of M: C is in Del_RM(P), with no assumption. A failure concludes nothing.
+  bool prove_face(const Box& U, const Box& H, const std::vector<int>& C) {
+    const int j = static_cast<int>(C.size()) - 1;
+    std::vector<exact::SquareSystem::AffineEnclosure> rows;
+    for (int q : C) {
+      if (q == p_) continue;
+      const auto it = std::find_if(cands_.begin(), cands_.end(), [&](const Candidate& c) { return c.index == q; });
+      if (it == cands_.end() || !affine_row(*it, rows.emplace_back())) return false;
+    }
+    for (int A = 0; A < (1 << m_); ++A) {
+      if (__builtin_popcount(A) != m_ - j) continue;
+      std::vector<exact::SquareSystem::AffineEnclosure> all = rows;
+      Box UH = U;
+      bool interior = true;
+      for (int a = 0; a < m_; ++a) {
+        if (!(A >> a & 1)) continue;
+        const double c = U[a].midpoint(), w = U[a].width() / 64;
+        UH[a] = Interval{c - w, c + w};
+        interior &= UH[a].lo < c && c < UH[a].hi;
+        all.push_back({Interval::point(-c), std::vector<Interval>(m_ + k_, Interval::point(0))});
+        all.back().linear[a] = Interval::point(1);
+      }
+      if (!interior) continue;
+      UH.insert(UH.end(), H.begin(), H.end());
+      ++report_.krawczyk_calls;
+      const exact::KrawczykResult kr =
+          exact::krawczyk(exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(all)), UH);
+      const Box* root = kr.status == exact::RootStatus::unique_root ? &kr.box : kr.nearby_root ? &*kr.nearby_root : nullptr;
+      Box X;
+      if (root && chart_.image(Box(root->begin(), root->begin() + m_), Box(root->begin() + m_, root->end()), X) &&
+          selected(X) && separated(C, X)) {
+        report_.face_points.push_back({C, std::move(X)});
+        return true;
+      }
+    }
+    return false;
+  }
+
   // Krawczyk on {G = 0, s_{q_i} = 0} in U x H. True when decided (a vertex recorded, or none).
   bool krawczyk_vertex(const Work& w, const Box& H) {
     const std::vector<int> simplex = simplex_of(w.S);
@@ -608,18 +671,12 @@ class CellAnalysis {
       // The chart's rows G(u, h) (shared), then s_q = c - 2 a.u - 2 b.h for each q, known by the
       // candidate's enclosures (which hold the exact values, see Candidate): Krawczyk answers
       // for every affine row within them, the true one included (SquareSystem::with_enclosed_rows).
-      std::vector<exact::SquareSystem::AffineEnclosure> rows;
-      for (int i : w.S) {
-        const Candidate& C = cands_[i];
-        exact::SquareSystem::AffineEnclosure row{exact::Interval{C.c.inf(), C.c.sup()}, {}};
-        for (const IA& a : C.a2) row.linear.push_back({-a.sup(), -a.inf()});
-        for (const IA& b : C.b2) row.linear.push_back({-b.sup(), -b.inf()});
-        if (!row.constant.is_finite() || !std::all_of(row.linear.begin(), row.linear.end(), [](const Interval& i) { return i.is_finite(); })) {
+      std::vector<exact::SquareSystem::AffineEnclosure> rows(w.S.size());
+      for (std::size_t i = 0; i < w.S.size(); ++i)
+        if (!affine_row(cands_[w.S[i]], rows[i])) {
           ++report_.krawczyk_failures;  // an overflow decides nothing
           return false;
         }
-        rows.push_back(std::move(row));
-      }
       it = systems_.emplace(simplex, exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(rows))).first;
     }
     Box UH = w.U;
@@ -690,7 +747,9 @@ class CellAnalysis {
       if (std::none_of(out.begin(), out.end(), same)) out.push_back(std::move(v));
     }
     V = std::move(out);
-    if (V.empty() && report_.kept > 0)
+    std::sort(report_.face_points.begin(), report_.face_points.end(),
+              [](const auto& x, const auto& y) { return x.simplex < y.simplex; });
+    if (V.empty() && report_.face_points.empty() && report_.kept > 0)
       report_.unresolved_faces.push_back({report_.covering_location, {p_},
                                           "the cell of p may hold points of M but has no restricted Voronoi vertex"});
     if (!report_.undecided.empty())
@@ -718,6 +777,8 @@ class CellAnalysis {
   double lemma_bound_ = 0;                       // THE GRAPH LEMMA's 2 tau cos Θ (0: not used)
   Box zero_u_;                                   // m times [0, 0]
   std::map<std::vector<int>, exact::SquareSystem> systems_;
+  static constexpr int kFaceTries = 4;
+  std::map<std::vector<int>, int> face_failures_;  // failed FACE POINT searches, per face
   RestrictedCellReport report_;
 };
 

@@ -99,8 +99,8 @@ struct RestrictedCellOptions {
 };
 
 struct RestrictedVoronoiVertex {
-  std::vector<int> simplex;  // sorted point indices, p included (m + 1 of them)
-  exact::Box x;              // N intervals: encloses the vertex, a point of M
+  std::vector<int> simplex;  // sorted point indices, p included (m + 1 of them; at most m for a face point)
+  exact::Box x;              // N intervals: encloses the vertex (or face point), a point of M
 };
 
 struct UndecidedBox {
@@ -122,9 +122,17 @@ struct RestrictedCellReport {
   // points of M in it. A face C of K containing p, with |C| <= m, that is not a face of a vertex
   // simplex found here may be a restricted Voronoi face of dimension > 0 without a vertex (then
   // Del_RM is not pure): such boxes are refined in the second pass, and the ones still in doubt at
-  // the finest purity width are listed here, once per face (`candidates` = the face C). Empty: every simplex of Del_RM
-  // containing p is a face of an m-simplex in `vertices` (when complete).
+  // the finest purity width are listed here, once per face (`candidates` = the face C). Before a
+  // box is refined for a face C, a FACE POINT is sought (rvd.cpp): a certified point of M whose
+  // nearest points in P are exactly C, which puts C in Del_RM(P) with no assumption; C is then
+  // known, as is every face of it. Empty: every simplex of Del_RM containing p is a face of an
+  // m-simplex in `vertices` or of a simplex in `face_points` (when complete).
   std::vector<UndecidedBox> unresolved_faces;
+  // Simplices C (p in C, |C| <= m, no face of a vertex simplex found here) each with an enclosure
+  // of a point of M whose nearest points in P are exactly C, sorted by simplex. With the cell
+  // complete (and the covering argument of restricted.hpp) no m-simplex of Del_RM(P) contains C:
+  // Del_RM(P) is not pure.
+  std::vector<RestrictedVoronoiVertex> face_points;
   bool complete = false;  // no undecided box, covering_bound < graph_radius
   std::string reason;     // why not complete ("" when complete)
   // Counters.

@@ -285,6 +285,64 @@ TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
   std::printf("%d of 5 scaled octahedra certified\n", certified);
 }
 
+// An impure Del_RM(P) (the configuration of RestrictedCell.AFacePointProvesAnEdgeInNoTriangle):
+// the north pole p, q = (0, 0, 0.9) inside the sphere, a Fibonacci sample below polar angle 1.
+// The cell of p is the cap z > 0.95 bounded by the bisector of p and q alone, so the edge {p, q}
+// is in Del_RM and in no triangle. The mesh of Del_RM's triangles (the independent reference,
+// which agrees) is claimed restricted: REFUTED, the witness a face point on that circle; the
+// reference has no triangle with that edge either.
+TEST(RestrictedChecks, AnImpureDelRMIsRefutedWithItsFacePoint) {
+  TempDir dir("restricted-impure");
+  const io::PointSet S = fibonacci_sphere(300);
+  io::PointSet P;
+  P.dimension = 3;
+  P.push_back(std::vector<double>{0, 0, 1});
+  P.push_back(std::vector<double>{0, 0, 0.9});
+  for (std::size_t i = 0; i < S.size(); ++i)
+    if (S.point(i)[2] <= std::cos(1.0)) P.push_back(std::vector<double>{S.point(i)[0], S.point(i)[1], S.point(i)[2]});
+  const reference::RestrictedDelaunayReference ref =
+      reference::restricted_delaunay_reference(P, reference::surface_equation(io::read_spec("builtin:sphere-2")));
+  ASSERT_TRUE(ref.decided());
+  io::Complex mesh;
+  mesh.num_vertices = P.size();
+  for (const auto& t : ref.triangles()) {
+    mesh.simplices.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+    EXPECT_FALSE(t[0] == 0 && t[1] == 1) << "the reference has a triangle on the edge {p, q}";
+  }
+  const std::string off = dir.file("mesh.off");
+  io::write_off(off, P, mesh);
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  o.points = o.complex = off;
+  const Certificate c = run_certify(o);
+  EXPECT_EQ(entry(c, CheckId::covering).verdict, Verdict::certified) << entry(c, CheckId::covering).summary;
+  const CheckEntry& rd = entry(c, CheckId::restricted_delaunay);
+  ASSERT_EQ(rd.verdict, Verdict::refuted) << rd.summary;
+  EXPECT_EQ(rd.details["pure"], false);
+  EXPECT_EQ(rd.details["lower_faces_in_no_m_simplex"], 1);
+  EXPECT_EQ(rd.details["missing_simplices"], 1);  // the edge, in no simplex of the mesh
+  EXPECT_EQ(rd.details["extra_simplices"], 0);    // the triangles agree with the reference
+  EXPECT_EQ(rd.details["m_simplices"], mesh.simplices.size());
+  ASSERT_EQ(rd.witnesses.size(), 1u);
+  const auto& w = rd.witnesses[0];
+  EXPECT_EQ(w["kind"], "face_point");
+  EXPECT_EQ(w["simplex"].get<std::vector<int>>(), (std::vector<int>{0, 1}));
+  // Re-check: the centre of the enclosure is on S^2, on the plane z = 0.95, and nearer to p and q
+  // than to every other point.
+  std::vector<double> x;
+  for (const auto& i : w["point_enclosure"])
+    x.push_back((std::stod(i[0].get<std::string>()) + std::stod(i[1].get<std::string>())) / 2);
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_NEAR(x[0] * x[0] + x[1] * x[1] + x[2] * x[2], 1, 1e-9);
+  EXPECT_NEAR(x[2], 0.95, 1e-9);
+  auto d2 = [&](std::size_t q) {
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += (x[k] - P.point(q)[k]) * (x[k] - P.point(q)[k]);
+    return d;
+  };
+  for (std::size_t q = 2; q < P.size(); ++q) EXPECT_GT(d2(q), d2(0) + 1e-3) << q;
+}
+
 // Issue 11, item 5: a surface mesher's vertices are found by bisection, so they lie only NEAR M.
 // Simulated here: each vertex is the 12th bisection midpoint of F(t d) = 0 on a ray t d (d a
 // Fibonacci direction, t in [1/2, 2]), so |t - 1| <= 3.7e-4 and no vertex is on the sphere (the

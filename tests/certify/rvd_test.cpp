@@ -410,17 +410,68 @@ TEST(RestrictedCell, AVertexOnASplitPlaneIsDecided) {
   }
 }
 
+// An impure Del_RM(P). P: the north pole p of the unit sphere, q = (0, 0, 0.9) inside it (off M:
+// Del_RM takes any points), and a Fibonacci sample of the sphere below polar angle 1. The points
+// of S^2 nearer to p than to q are the cap z > 0.95, and every other point of P is farther from
+// it (the sample starts 0.68 rad below the cap's rim, q 0.32 from it): the cell of p is that cap,
+// bounded by the circle z = 0.95 alone, a restricted Voronoi edge of {p, q} with no vertex. So
+// {p, q} is in Del_RM and in no triangle of it. The engine proves it by a FACE POINT, at p and
+// at q (whose cell is the ring between the cap and the sample), and finds no vertex at p.
+TEST(RestrictedCell, AFacePointProvesAnEdgeInNoTriangle) {
+  const io::PointSet S = fibonacci_sphere(300);
+  std::vector<std::vector<double>> pts{{0, 0, 1}, {0, 0, 0.9}};
+  for (std::size_t i = 0; i < S.size(); ++i)
+    if (S.point(i)[2] <= std::cos(1.0)) pts.push_back({S.point(i)[0], S.point(i)[1], S.point(i)[2]});
+  const io::PointSet P = make_points(3, pts);
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
+  const detail::PointGrid grid(P, 2);
+  RestrictedCellOptions opt;
+  opt.graph_radius = 0.8;
+  for (int p : {0, 1}) {
+    const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, p, opt);
+    EXPECT_TRUE(R.complete) << p << ": " << R.reason;
+    EXPECT_TRUE(R.unresolved_faces.empty()) << p;
+    ASSERT_EQ(R.face_points.size(), 1u) << p;
+    const RestrictedVoronoiVertex& f = R.face_points[0];
+    EXPECT_EQ(f.simplex, (Simplex{0, 1}));
+    // Re-check: the enclosure meets the circle x3 = 0.95 of S^2, and is nearer to p and q than to
+    // every other point (long double at the box's corners is enough at these margins).
+    EXPECT_TRUE(f.x[2].lo <= 0.95 && 0.95 <= f.x[2].hi) << f.x[2].lo << " " << f.x[2].hi;
+    long double n2 = 0, dp = 0;
+    for (int k = 0; k < 3; ++k) {
+      const long double c = (static_cast<long double>(f.x[k].lo) + f.x[k].hi) / 2;
+      n2 += c * c, dp += (c - P.point(0)[k]) * (c - P.point(0)[k]);
+    }
+    EXPECT_NEAR(static_cast<double>(n2), 1.0, 1e-9);
+    for (std::size_t q = 2; q < P.size(); ++q) {
+      long double d = 0;
+      for (int k = 0; k < 3; ++k) {
+        const long double c = (static_cast<long double>(f.x[k].lo) + f.x[k].hi) / 2;
+        d += (c - P.point(q)[k]) * (c - P.point(q)[k]);
+      }
+      EXPECT_GT(d, dp) << q;
+    }
+    if (p == 0) EXPECT_TRUE(R.vertices.empty());
+    if (p == 1) EXPECT_FALSE(R.vertices.empty());  // the ring's outer rim
+    for (const auto& v : R.vertices) EXPECT_FALSE(std::includes(v.simplex.begin(), v.simplex.end(), f.simplex.begin(), f.simplex.end()));
+  }
+}
+
 TEST(RestrictedCell, CubeOnItsSphereIsNeverDecided) {
   // Exactly degenerate: the centre of each face of the cube is equidistant from its 4 vertices.
   std::vector<std::vector<double>> pts;
   for (int i = 0; i < 8; ++i) pts.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
   const io::PointSet P = make_points(3, pts);
-  // Its restricted Voronoi edges all lack a certified vertex: a coarse purity width keeps the
-  // purity refinement along them short (the default would spend the box budget on them).
-  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 3", P, 2.2, 24, 1.0 / 1024);
+  const CellRuns cells_run = analyse_all("x1^2 + x2^2 + x3^2 - 3", P, 2.2);
   for (const auto& R : cells_run.cells) {
     EXPECT_FALSE(R.complete) << R.point;
-    EXPECT_FALSE(R.unresolved_faces.empty()) << R.point;  // its restricted Voronoi edges have no certified vertex
+    // Its restricted Voronoi edges have no certified vertex, but are proven by face points: the
+    // 3 cube edges at the point (its coordinates differ from p's in one place).
+    ASSERT_EQ(R.face_points.size(), 3u) << R.point;
+    for (const auto& f : R.face_points) {
+      ASSERT_EQ(f.simplex.size(), 2u);
+      EXPECT_EQ(__builtin_popcount(f.simplex[0] ^ f.simplex[1]), 1) << f.simplex[0] << " " << f.simplex[1];
+    }
     EXPECT_TRUE(R.vertices.empty()) << R.point;  // no triangle is ever claimed
     ASSERT_FALSE(R.undecided.empty()) << R.point;
     int ties = 0;

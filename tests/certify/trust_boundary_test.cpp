@@ -152,8 +152,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // are proofs) and the hull engine it shares with the sphere (certify/detail/sphere_hull.*, the
   // sphere's decisions, gift wrapping and ridge count made generic: +150 net) took it to ~7360,
   // and reading a product metric as the shape it is (certify/intrinsic.cpp, ~40 lines) to 7434:
-  // 7460.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7460) << "certify/ should stay small enough to read whole";
+  // 7460. Face points (issue 11: Del_RM proven impure instead of UNDECIDED, rvd.cpp's Krawczyk on
+  // a face's equidistance system with fixed chart axes and its argument, the assembly and check
+  // 12's witnesses, ~110 lines net) took it to ~7550: 7580.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7580) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
