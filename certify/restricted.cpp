@@ -57,6 +57,10 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     // THE GRAPH LEMMA (rvd.cpp) holds out to nearly the reach from p: start inside it when it is used.
     if (o.cell.reach > 0) radius[p] = std::min(radius[p], 0.8 * o.cell.reach);
   }
+  // Boxes per cell: 4 times more, twice at most, for a cell that ran out nearly done (its only
+  // undecided boxes are the ones left, under a quarter of its budget). Work only: a cell with
+  // boxes undecided otherwise (exact ties, under- or overflow) is not worth a larger budget.
+  std::vector<long> budget(n, o.cell.max_boxes);
   std::vector<int> todo(n);
   for (int p = 0; p < n; ++p) todo[p] = p;
   double target = 0;  // the covering target: the largest vertex distance found so far
@@ -71,6 +75,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
       detail::parallel_for(count, o.threads, [&](std::size_t i, int) {
         RestrictedCellOptions co = o.cell;
         co.graph_radius = radius[todo[begin + i]];
+        co.max_boxes = budget[todo[begin + i]];
         cells[i].emplace(system, P, grid, todo[begin + i], co);
         lower[i] = cells[i]->first_pass();
       });
@@ -85,18 +90,25 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     double c = 0;
     for (const auto& cell : R.cells) c = std::max(c, cell.covering_bound);
     std::vector<int> again;
+    // With THE GRAPH LEMMA, up to 0.95 reach first (beyond it the lemma fails near p and cells are slow).
+    const double lemma_cap = 0.95 * o.cell.reach;
     for (int p = 0; p < n; ++p) {
       const RestrictedCellReport& cell = R.cells[p];
       const bool reaches = cell.undecided.empty() && !cell.complete;  // reaches its ball's boundary
-      if ((reaches || !(c < cell.graph_radius)) && radius[p] < r_cap) again.push_back(p);
+      const bool grow = (reaches || !(c < cell.graph_radius)) && radius[p] < r_cap;
+      const long left = std::count_if(cell.undecided.begin(), cell.undecided.end(),
+                                      [](const UndecidedBox& u) { return u.reason == "box budget exhausted"; });
+      const bool out_of_boxes = left > 0 && left == static_cast<long>(cell.undecided.size()) && 4 * left < budget[p] &&
+                                budget[p] < 16 * o.cell.max_boxes;
+      if (!grow && !out_of_boxes) continue;
+      if (round < o.rounds) again.push_back(p);
+      if (out_of_boxes) budget[p] *= 4;  // (the same radius, unless it must grow too)
+      if (grow) {
+        const double next = std::min(r_cap, std::max(2 * radius[p], 1.5 * c));
+        radius[p] = radius[p] < lemma_cap ? std::min(next, lemma_cap) : next;
+      }
     }
-    if (again.empty() || round >= o.rounds) break;
-    // With THE GRAPH LEMMA, up to 0.95 reach first (beyond it the lemma fails near p and cells are slow).
-    const double lemma_cap = 0.95 * o.cell.reach;
-    for (int p : again) {
-      const double next = std::min(r_cap, std::max(2 * radius[p], 1.5 * c));
-      radius[p] = radius[p] < lemma_cap ? std::min(next, lemma_cap) : next;
-    }
+    if (again.empty()) break;
     todo = std::move(again);
   }
 

@@ -8,7 +8,8 @@
 // LEMMA of rvd.cpp (which holds out to nearly the reach); points whose cell reaches its
 // ball's boundary, or
 // whose radius is not above the largest covering bound c found so far, are analysed again with a
-// larger radius (at most `rounds` times).
+// larger radius, and those that ran out of their box budget nearly done with 4 times the budget,
+// twice at most (at most `rounds` times in all).
 //
 // THE COVERING ARGUMENT (open and closed). Let c = max_p covering_bound_p and suppose every cell
 // is complete (no undecided box) and c < r_p for every p. Let
