@@ -42,8 +42,8 @@ Tri member(const StarReport& r, const Simplex& s) {
   for (const auto& c : r.claimed)
     if (c.simplex == s && (c.degenerate || c.conflict >= 0)) return Tri::no;  // a point in its ball
   if (r.state != StarReport::State::proven) return Tri::unknown;
-  for (const auto& c : r.star)
-    if (c.simplex == s) return Tri::yes;
+  for (int i = 0; i < r.cells; ++i)
+    if (r.simplex(i) == s) return Tri::yes;
   return Tri::no;
 }
 
@@ -212,6 +212,25 @@ struct Stars {
   }
 };
 
+// What checks 3-14 keep of star(p) (1M points: all cell reports would be 1.3 KB a point, most of the peak memory): the
+// cells' simplices; the smallest margin and the largest R_p(s)^2 over the cells that are cells (degenerate or with a
+// point inside are not), folded in cell order as checks 6 and 10 fold them; the reports only where one is a witness.
+void keep_for_checks(StarReport& r, int m, bool verify) {
+  bool witness = r.state != StarReport::State::proven || (verify && !r.claimed_verified);
+  r.cells = static_cast<int>(r.star.size()), r.vertices.reserve(r.star.size() * (m + 1));
+  for (int i = 0; i < r.cells; ++i) {
+    const CellReport& c = r.star[i];
+    r.vertices.insert(r.vertices.end(), c.simplex.begin(), c.simplex.end());
+    witness = witness || !c.empty() || c.protection_point >= 0 || c.eps_sign >= 0;
+    if (c.degenerate || c.conflict >= 0) continue;  // not a cell: neither check measures it
+    if (c.margin.lo < r.min_margin.lo) r.min_margin_cell = i, r.min_margin_point = c.margin_point;
+    if (c.radius2.hi > r.max_radius2.hi) r.max_radius_cell = i;
+    r.min_margin = {std::min(r.min_margin.lo, c.margin.lo), std::min(r.min_margin.hi, c.margin.hi)};
+    r.max_radius2 = {std::max(r.max_radius2.lo, c.radius2.lo), std::max(r.max_radius2.hi, c.radius2.hi)};
+  }
+  if (!witness) std::vector<CellReport>().swap(r.star);
+}
+
 Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads,
                     std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress) {
   const std::size_t n = S.points->size();
@@ -240,12 +259,13 @@ Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads
   detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     const std::vector<Simplex> claimed = given ? st.claimed(p) : std::vector<Simplex>();
     st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed : nullptr, ctx[w]);
+    keep_for_checks(st.reports[p], m, given != nullptr);
     if (progress) progress->add();
   });
   if (!given) {
     auto& K = st.complex.simplices;
     for (const auto& r : st.reports)
-      for (const auto& c : r.star) K.push_back(c.simplex);
+      for (auto& s : r.simplices()) K.push_back(std::move(s));
     std::sort(K.begin(), K.end()), K.erase(std::unique(K.begin(), K.end()), K.end()), st.complex.num_vertices = n;
   }
   return st;
@@ -367,8 +387,11 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
       prot.undecide("some stars could not be determined");
       continue;
     }
-    for (const auto& c : r.star) {
-      ++R.cells;
+    R.cells += r.cells;
+    if (r.min_margin.lo < min_margin.lo)
+      margin_at = {{"simplex", r.simplex(r.min_margin_cell)}, {"at_vertex", r.p}, {"point", r.min_margin_point}};
+    min_margin = {std::min(min_margin.lo, r.min_margin.lo), std::min(min_margin.hi, r.min_margin.hi)};
+    for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) {
         prot.undecide("a star cell could not be certified");
         continue;
@@ -386,9 +409,6 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
                           {"exact_sign", c.protection_sign}, {"power", enclosure_json(c.protection_power)},
                           {"detail", "sign(|c - q|^2 - R^2 - claim) <= 0"}});
       }
-      if (c.margin.lo < min_margin.lo) margin_at = {{"simplex", c.simplex}, {"at_vertex", r.p}, {"point", c.margin_point}};
-      min_margin.lo = std::min(min_margin.lo, c.margin.lo);
-      min_margin.hi = std::min(min_margin.hi, c.margin.hi);
     }
   }
   if (R.cells) {
@@ -426,12 +446,11 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
       radius.undecide("some stars could not be determined");
       continue;
     }
-    for (const auto& c : r.star) {
-      ++R.cells;
+    R.cells += r.cells;
+    if (r.max_radius2.hi > max_r2.hi) radius_at = {{"simplex", r.simplex(r.max_radius_cell)}, {"at_vertex", r.p}};
+    max_r2 = {std::max(max_r2.lo, r.max_radius2.lo), std::max(max_r2.hi, r.max_radius2.hi)};
+    for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) continue;  // not a cell: check 6 is undecided
-      if (c.radius2.hi > max_r2.hi) radius_at = {{"simplex", c.simplex}, {"at_vertex", r.p}};
-      max_r2.lo = std::max(max_r2.lo, c.radius2.lo);
-      max_r2.hi = std::max(max_r2.hi, c.radius2.hi);
       if (eps && c.eps_sign >= 0) {
         ++too_big;
         radius.refute("a star simplex has R_p(s) >= eps");
@@ -531,9 +550,7 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   std::vector<SecureReport> sr(n);
   detail::parallel_for(n, threads, [&](std::size_t p, int w) {
     if (reports[p].state != StarReport::State::proven) return;
-    std::vector<Simplex> st;
-    for (const auto& c : reports[p].star) st.push_back(c.simplex);
-    sr[p] = analyse_secure(S, static_cast<int>(p), st, sp, ctx[w], &reports[p]);
+    sr[p] = analyse_secure(S, static_cast<int>(p), reports[p].simplices(), sp, ctx[w], &reports[p]);
     if (progress) progress->add();
   });
   long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0;
@@ -819,7 +836,7 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
   long unknown_stars = 0;
   for (const auto& r : st.reports) {
     if (r.state == StarReport::State::proven) {  // (claimed_verified: star holds the claimed cells)
-      for (const auto& c : r.star) tm.insert(c.simplex);
+      for (auto& s : r.simplices()) tm.insert(std::move(s));
     } else {
       ++unknown_stars;
     }
@@ -1118,7 +1135,7 @@ Certificate run_certify(const CertifyOptions& o) {
     if (stars)
       for (const auto& r : stars->reports)
         if (r.state == StarReport::State::proven)
-          for (const auto& c : r.star) candidates.push_back(c.simplex);
+          for (auto& s : r.simplices()) candidates.push_back(std::move(s));
     if (in.given)
       for (Simplex s : in.given->simplices)
         if (static_cast<int>(s.size()) == m + 1) {

