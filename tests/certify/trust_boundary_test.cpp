@@ -154,8 +154,9 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // and reading a product metric as the shape it is (certify/intrinsic.cpp, ~40 lines) to 7434:
   // 7460. Face points (issue 11: Del_RM proven impure instead of UNDECIDED, rvd.cpp's Krawczyk on
   // a face's equidistance system with fixed chart axes and its argument, the assembly and check
-  // 12's witnesses, ~110 lines net) took it to ~7550: 7580.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7580) << "certify/ should stay small enough to read whole";
+  // 12's witnesses, ~110 lines net), the box-budget retry of nearly finished cells (~15) and the
+  // per-star summary that keeps 1M points under 1.5 GB (issue 14, ~20) took it to 7589: 7610.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7610) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
