@@ -418,27 +418,59 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
   std::optional<Eigen::VectorXd> best;
   double best_d2 = -1;
   bool best_sparse = false;
-  for (int attempt = 0; attempt < P_.pick_attempts; ++attempt) {
-    ++st.candidates;
-    auto x = pick_in_region(M_, p, *frame, region, *rng_, Rp);
-    if (!x) {
-      ++st.psi_failures;
-      continue;
+  // The candidates are drawn one after another, as a one-at-a-time search draws them, keeping the
+  // generator's state after each; their hitting-set searches (the cost: about 99% of candidates are
+  // rejected at Γ0 = 0.3) run in parallel in batches of 1, 2, 4, ... 32, sizes that do not depend
+  // on the thread count. The first good candidate in drawing order is taken and the generator set
+  // to the state drawing it left: the point, the statistics and every later draw are those of the
+  // sequential search, whatever the thread count. (A first batch of one: at Γ0 = 0.1 the first
+  // candidate is nearly always good, and nothing is searched in vain.)
+  struct Drawn {
+    std::optional<Eigen::VectorXd> x;
+    double d2 = 0;
+    bool sparse_ok = false, hit = false;
+    sampling::Random after;
+  };
+  std::vector<Drawn> batch;
+  for (int attempt = 0, size = 1; attempt < P_.pick_attempts; attempt += size, size = std::min(2 * size, 32)) {
+    size = std::min(size, P_.pick_attempts - attempt);
+    batch.clear();
+    sampling::Random gen = *rng_;
+    for (int j = 0; j < size; ++j) {
+      Drawn d{pick_in_region(M_, p, *frame, region, gen, Rp), 0, false, false, gen};
+      if (d.x) d.d2 = index_.nearest_distance2(manifold::as_span(*d.x)), d.sparse_ok = paper_ || d.d2 > sparse2;
+      batch.push_back(std::move(d));
     }
-    const double d2 = index_.nearest_distance2(manifold::as_span(*x));
-    if (!(d2 > 0)) continue;  // on an existing point
-    const bool sparse_ok = paper_ || d2 > sparse2;
-    if (sparse_ok) {
-      if (!find_hitting_set(manifold::as_span(*x), R_.points, index_, hq)) return x;  // a good point
-      ++st.rejected_hit;
-    } else {
-      ++st.rejected_sparse;
+    support::parallel_chunks(batch.size(), P_.threads, 1, [&](int) {
+      return [&](std::size_t b, std::size_t e) {
+        for (std::size_t j = b; j < e; ++j)
+          if (batch[j].x && batch[j].d2 > 0 && batch[j].sparse_ok)
+            batch[j].hit = find_hitting_set(manifold::as_span(*batch[j].x), R_.points, index_, hq).has_value();
+      };
+    });
+    for (Drawn& d : batch) {
+      ++st.candidates;
+      if (!d.x) {
+        ++st.psi_failures;
+        continue;
+      }
+      if (!(d.d2 > 0)) continue;  // on an existing point
+      if (d.sparse_ok) {
+        if (!d.hit) {  // a good point
+          *rng_ = d.after;
+          return std::move(d.x);
+        }
+        ++st.rejected_hit;
+      } else {
+        ++st.rejected_sparse;
+      }
+      if (!paper_ && (!best || (d.sparse_ok && !best_sparse) || (d.sparse_ok == best_sparse && d.d2 > best_d2))) {
+        best = d.x;
+        best_d2 = d.d2;
+        best_sparse = d.sparse_ok;
+      }
     }
-    if (!paper_ && (!best || (sparse_ok && !best_sparse) || (sparse_ok == best_sparse && d2 > best_d2))) {
-      best = x;
-      best_d2 = d2;
-      best_sparse = sparse_ok;
-    }
+    *rng_ = batch.back().after;
   }
   if (best) ++st.fallbacks;
   return best;

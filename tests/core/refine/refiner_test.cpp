@@ -253,6 +253,34 @@ TEST(Refiner, SameSeedSameOutputForAnyThreadCount) {
   EXPECT_NE(a.points.coordinates, c.points.coordinates);  // the picks depend on the seed
 }
 
+// Pick_valid searches hitting sets in parallel batches (1, 2, 4, ... 32 candidates): at Γ0 = 0.3
+// most candidates are rejected, so batches of several run on both threads; the first good
+// candidate in drawing order is taken and the generator left where drawing it left it, so points,
+// complex and every statistic are the same for any thread count.
+TEST(Refiner, ParallelPickValidIsTheSequentialSearch) {
+  manifold::Manifold M = builtin("clifford-torus-2");
+  auto grid = torus_grid(12);
+  RefineParameters p;
+  p.seed = 3;
+  p.constants.gamma0 = exact("0.3");
+  p.threads = 1;
+  auto a = refine(M, grid, p);
+  p.threads = 2;
+  auto b = refine(M, grid, p);
+  EXPECT_EQ(a.points.coordinates, b.points.coordinates);
+  EXPECT_EQ(a.complex.simplices, b.complex.simplices);
+  std::size_t rejected = 0, drawn = 0;
+  for (Rule r : kRules) {
+    EXPECT_EQ(a.rules[r].candidates, b.rules[r].candidates) << to_string(r);
+    EXPECT_EQ(a.rules[r].rejected_hit, b.rules[r].rejected_hit) << to_string(r);
+    EXPECT_EQ(a.rules[r].fallbacks, b.rules[r].fallbacks) << to_string(r);
+    rejected += a.rules[r].rejected_hit, drawn += a.rules[r].candidates;
+  }
+  EXPECT_GT(rejected, 20u) << "the case must reject candidates, or no batch holds more than one";
+  std::printf("[ pick_valid ] %zu candidates drawn, %zu rejected by a hitting set, %zu points added\n", drawn, rejected,
+              a.points.size() - a.input_size);
+}
+
 TEST(Refiner, CapsStopTheRunAndSaySo) {
   manifold::Manifold M = builtin("sphere-2");
   auto pts = net(M, 0.3);
