@@ -621,7 +621,9 @@ class CellAnalysis {
   // A FACE POINT for C = {p, q_1..q_j}, j < m (PURITY in rvd.hpp). Krawczyk on the square system
   // {G(u, h) = 0, s_{q_i} = 0 (i = 1..j), u_a = c_a (a in A)}, for each set A of m - j chart axes,
   // c_a the midpoint of U's side a (a double, so the row u_a - c_a is exact), in U x H with side a
-  // cut to an interval around c_a (the box needs an interior). A root proven (unique in the box,
+  // cut to an interval around c_a (the box needs an interior) and the others widened 4 times about
+  // their centres (the face crosses U, but not always on the lines through its centre; any box
+  // will do, it only has to hold a root Krawczyk can prove). A root proven (unique in the box,
   // or by inflation next to it: either way it exists) is a point x of {F = 0} equidistant from the
   // points of C; s > 0 on its image X and the direct check that every other point of P is
   // strictly farther than p on X (separated) make C exactly the set of points of P nearest to x,
@@ -638,6 +640,11 @@ class CellAnalysis {
       if (__builtin_popcount(A) != m_ - j) continue;
       std::vector<exact::SquareSystem::AffineEnclosure> all = rows;
       Box UH = U;
+      UH.insert(UH.end(), H.begin(), H.end());
+      for (auto& i : UH) {  // (rounded outwards or not, a box is a box)
+        const double c = i.midpoint(), w = i.width();
+        i = Interval{c - 2 * w, c + 2 * w};
+      }
       bool interior = true;
       for (int a = 0; a < m_; ++a) {
         if (!(A >> a & 1)) continue;
@@ -648,7 +655,6 @@ class CellAnalysis {
         all.back().linear[a] = Interval::point(1);
       }
       if (!interior) continue;
-      UH.insert(UH.end(), H.begin(), H.end());
       ++report_.krawczyk_calls;
       const exact::KrawczykResult kr =
           exact::krawczyk(exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(all)), UH);

@@ -285,7 +285,7 @@ TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
   std::printf("%d of 5 scaled octahedra certified\n", certified);
 }
 
-// An impure Del_RM(P) (the configuration of RestrictedCell.AFacePointProvesAnEdgeInNoTriangle):
+// An impure Del_RM(P) (the configuration of RestrictedCell.AFacePointProvesAnEdgeInNoMSimplex):
 // the north pole p, q = (0, 0, 0.9) inside the sphere, a Fibonacci sample below polar angle 1.
 // The cell of p is the cap z > 0.95 bounded by the bisector of p and q alone, so the edge {p, q}
 // is in Del_RM and in no triangle. The mesh of Del_RM's triangles (the independent reference,

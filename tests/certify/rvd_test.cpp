@@ -410,50 +410,57 @@ TEST(RestrictedCell, AVertexOnASplitPlaneIsDecided) {
   }
 }
 
-// An impure Del_RM(P). P: the north pole p of the unit sphere, q = (0, 0, 0.9) inside it (off M:
-// Del_RM takes any points), and a Fibonacci sample of the sphere below polar angle 1. The points
-// of S^2 nearer to p than to q are the cap z > 0.95, and every other point of P is farther from
-// it (the sample starts 0.68 rad below the cap's rim, q 0.32 from it): the cell of p is that cap,
-// bounded by the circle z = 0.95 alone, a restricted Voronoi edge of {p, q} with no vertex. So
-// {p, q} is in Del_RM and in no triangle of it. The engine proves it by a FACE POINT, at p and
-// at q (whose cell is the ring between the cap and the sample), and finds no vertex at p.
-TEST(RestrictedCell, AFacePointProvesAnEdgeInNoTriangle) {
-  const io::PointSet S = fibonacci_sphere(300);
-  std::vector<std::vector<double>> pts{{0, 0, 1}, {0, 0, 0.9}};
-  for (std::size_t i = 0; i < S.size(); ++i)
-    if (S.point(i)[2] <= std::cos(1.0)) pts.push_back({S.point(i)[0], S.point(i)[1], S.point(i)[2]});
-  const io::PointSet P = make_points(3, pts);
-  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
-  const detail::PointGrid grid(P, 2);
-  RestrictedCellOptions opt;
-  opt.graph_radius = 0.8;
-  for (int p : {0, 1}) {
-    const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, p, opt);
-    EXPECT_TRUE(R.complete) << p << ": " << R.reason;
-    EXPECT_TRUE(R.unresolved_faces.empty()) << p;
-    ASSERT_EQ(R.face_points.size(), 1u) << p;
-    const RestrictedVoronoiVertex& f = R.face_points[0];
-    EXPECT_EQ(f.simplex, (Simplex{0, 1}));
-    // Re-check: the enclosure meets the circle x3 = 0.95 of S^2, and is nearer to p and q than to
-    // every other point (long double at the box's corners is enough at these margins).
-    EXPECT_TRUE(f.x[2].lo <= 0.95 && 0.95 <= f.x[2].hi) << f.x[2].lo << " " << f.x[2].hi;
-    long double n2 = 0, dp = 0;
-    for (int k = 0; k < 3; ++k) {
-      const long double c = (static_cast<long double>(f.x[k].lo) + f.x[k].hi) / 2;
-      n2 += c * c, dp += (c - P.point(0)[k]) * (c - P.point(0)[k]);
+// An impure Del_RM(P), on S^2 and on S^3. P: the north pole p of the unit sphere, q = 0.9 p
+// inside it (off M: Del_RM takes any points), and a sample of the sphere below polar angle 1. The
+// points of the sphere nearer to p than to q are the cap x_d > 0.95, and every other point of P
+// is farther from it (the sample starts 0.68 rad below the cap's rim, q 0.32 from it): the cell
+// of p is that cap, bounded by the sphere x_d = 0.95 alone, a restricted Voronoi face of {p, q}
+// (a circle, a 2-sphere) with no vertex. So {p, q} is in Del_RM and in no m-simplex of it. The
+// engine proves it by a FACE POINT, at p and at q (whose cell is the ring between the cap and the
+// sample), and finds no vertex at p.
+TEST(RestrictedCell, AFacePointProvesAnEdgeInNoMSimplex) {
+  for (int d : {3, 4}) {
+    const io::PointSet S = d == 3 ? fibonacci_sphere(300) : spread_sphere(4, 1500, 0.3, 5);
+    std::vector<std::vector<double>> pts(2, std::vector<double>(d, 0.0));
+    pts[0][d - 1] = 1, pts[1][d - 1] = 0.9;
+    for (std::size_t i = 0; i < S.size(); ++i)
+      if (S.point(i)[d - 1] <= std::cos(1.0)) pts.emplace_back(S.point(i).begin(), S.point(i).end());
+    const io::PointSet P = make_points(d, pts);
+    const exact::ImplicitSystem F =
+        exact::ImplicitSystem::parse({d == 3 ? "x1^2 + x2^2 + x3^2 - 1" : "x1^2 + x2^2 + x3^2 + x4^2 - 1"}, d);
+    const detail::PointGrid grid(P, d - 1);
+    RestrictedCellOptions opt;
+    opt.graph_radius = 0.8;
+    // (A cell alone has no covering target: p's, with no vertex, would be refined for its covering
+    // bound down to the default width everywhere, 128^m boxes.)
+    opt.covering_width = 1.0 / 16;
+    for (int p : {0, 1}) {
+      const RestrictedCellReport R = analyse_restricted_cell(F, P, grid, p, opt);
+      EXPECT_TRUE(R.complete) << d << " " << p << ": " << R.reason;
+      EXPECT_TRUE(R.unresolved_faces.empty()) << d << " " << p;
+      ASSERT_EQ(R.face_points.size(), 1u) << d << " " << p;
+      const RestrictedVoronoiVertex& f = R.face_points[0];
+      EXPECT_EQ(f.simplex, (Simplex{0, 1}));
+      // Re-check: the enclosure meets the plane x_d = 0.95, its centre is on the sphere, and
+      // nearer to p and q than to every other point (long double is enough at these margins).
+      EXPECT_TRUE(f.x[d - 1].lo <= 0.95 && 0.95 <= f.x[d - 1].hi) << f.x[d - 1].lo << " " << f.x[d - 1].hi;
+      std::vector<long double> c(d);
+      for (int k = 0; k < d; ++k) c[k] = (static_cast<long double>(f.x[k].lo) + f.x[k].hi) / 2;
+      auto dist2 = [&](std::size_t q) {
+        long double s = 0;
+        for (int k = 0; k < d; ++k) s += (c[k] - P.point(q)[k]) * (c[k] - P.point(q)[k]);
+        return s;
+      };
+      long double n2 = 0;
+      for (int k = 0; k < d; ++k) n2 += c[k] * c[k];
+      EXPECT_NEAR(static_cast<double>(n2), 1.0, 1e-9);
+      for (std::size_t q = 2; q < P.size(); ++q) EXPECT_GT(dist2(q), dist2(0)) << d << " " << q;
+      if (p == 0) EXPECT_TRUE(R.vertices.empty());
+      if (p == 1) EXPECT_FALSE(R.vertices.empty());  // the ring's outer rim
+      for (const auto& v : R.vertices)
+        EXPECT_FALSE(std::includes(v.simplex.begin(), v.simplex.end(), f.simplex.begin(), f.simplex.end()));
+      std::printf("[ face point ] S^%d, cell of %d: %zu vertices, %ld boxes\n", d - 1, p, R.vertices.size(), R.boxes);
     }
-    EXPECT_NEAR(static_cast<double>(n2), 1.0, 1e-9);
-    for (std::size_t q = 2; q < P.size(); ++q) {
-      long double d = 0;
-      for (int k = 0; k < 3; ++k) {
-        const long double c = (static_cast<long double>(f.x[k].lo) + f.x[k].hi) / 2;
-        d += (c - P.point(q)[k]) * (c - P.point(q)[k]);
-      }
-      EXPECT_GT(d, dp) << q;
-    }
-    if (p == 0) EXPECT_TRUE(R.vertices.empty());
-    if (p == 1) EXPECT_FALSE(R.vertices.empty());  // the ring's outer rim
-    for (const auto& v : R.vertices) EXPECT_FALSE(std::includes(v.simplex.begin(), v.simplex.end(), f.simplex.begin(), f.simplex.end()));
   }
 }
 
