@@ -12,6 +12,10 @@
 //
 //   bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120]
 //                [--max-perturb 0.01] [--seed 1] [--reps 1] [--no-gudhi] [--out-dir DIR]
+//                [--gamma0 0.1,0.15,0.2,0.3] [--time-limit S]
+// With several Γ0 (issue 15: the thickness trade-off), delcert runs once per value ("gamma0_sweep":
+// points added, time, and the distribution of the thickness Υ of the m-simplices); the first value
+// is the one compared with GUDHI. --time-limit stops a run (marked, not reproducible).
 // With --reps R, delcert runs R times (the outputs are identical; the JSON gives the median
 // total time and every run's); GUDHI runs once (its time is set by the limit).
 //
@@ -31,6 +35,7 @@
 #include "core/manifold/manifold.hpp"
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
+#include "core/refine/simplex_measures.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "io/points.hpp"
@@ -111,11 +116,29 @@ json run_gudhi(const io::PointSet& ps, const tangential::TangentPlanes& planes, 
   }
 }
 
+// Thickness Υ of the m-simplices of the complex: the smallest and percentiles (by rank).
+json thickness_distribution(const refine::RefineResult& r, int m) {
+  std::vector<double> t;
+  for (const auto& s : r.complex.simplices)
+    if (static_cast<int>(s.size()) == m + 1) t.push_back(refine::make_simplex(r.points, s).thickness());
+  if (t.empty()) return nullptr;
+  std::sort(t.begin(), t.end());
+  json j = {{"m_simplices", t.size()}, {"min", t.front()}};
+  for (const auto& [key, q] : {std::pair{"p0.1", 0.001}, {"p1", 0.01}, {"p5", 0.05}, {"p50", 0.5}})
+    j[key] = t[static_cast<std::size_t>(q * static_cast<double>(t.size() - 1))];
+  long below = 0;  // below 10 times today's smallest at Γ0 = 0.1 on T^3 from 10k (0.0028, issue 15)
+  for (double x : t) below += x < 0.028;
+  j["below_0.028"] = below;
+  return j;
+}
+
 json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
-                 const std::string& name) {
+                 const std::string& name, const std::string& gamma0, double time_limit) {
   refine::RefineParameters p;
   p.threads = threads;
   p.seed = seed;
+  p.constants.gamma0 = refine::ExactParameter::parse(gamma0);
+  p.time_limit = time_limit;
   auto t0 = std::chrono::steady_clock::now();
   refine::RefineResult r = refine::refine(manifold, ps, p);
   const double total = seconds_since(t0);
@@ -154,6 +177,7 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
   j["final_max_radius"] = f.max_radius;
   j["sparsity_violations"] = r.sparsity_violations.size();
   j["claims_hold"] = f.consistent && f.all_good && f.all_small && f.protected_claim;
+  j["thickness_of_m_simplices"] = thickness_distribution(r, manifold.intrinsic_dimension());
   if (!out_dir.empty()) {
     refine::OutputContext ctx;
     ctx.manifold = manifold.spec().name;
@@ -181,7 +205,8 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   int reps = 1;
   bool gudhi = true;
-  std::string out_dir;
+  std::string out_dir, gamma0_list = "0.1";
+  double time_limit = 0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -196,9 +221,12 @@ int main(int argc, char** argv) {
     else if (a == "--reps") reps = std::max(1, std::stoi(next()));
     else if (a == "--no-gudhi") gudhi = false;
     else if (a == "--out-dir") out_dir = next();
+    else if (a == "--gamma0") gamma0_list = next();
+    else if (a == "--time-limit") time_limit = std::stod(next());
     else {
       std::cerr << "usage: bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120] "
-                   "[--max-perturb 0.01] [--seed 1] [--no-gudhi] [--out-dir DIR]\n";
+                   "[--max-perturb 0.01] [--seed 1] [--no-gudhi] [--out-dir DIR] [--gamma0 0.1,0.15,...] "
+                   "[--time-limit S]\n";
       return 2;
     }
   }
@@ -218,12 +246,18 @@ int main(int argc, char** argv) {
     e["points"] = c.count;
     e["sampling"] = "uniform with respect to volume (built-in parametrisation), seed " + std::to_string(seed);
     std::cerr << c.manifold << " " << c.count << ": delcert" << std::flush;
-    {
+    // One run per Γ0 (the first is "delcert", compared with GUDHI; all of them in "gamma0_sweep").
+    json sweep = json::array();
+    for (std::size_t begin = 0, end = 0; begin <= gamma0_list.size(); begin = end + 1) {
+      end = gamma0_list.find(',', begin);
+      if (end == std::string::npos) end = gamma0_list.size();
+      const std::string g = gamma0_list.substr(begin, end - begin);
       std::vector<double> totals;
       json d;
       for (int r = 0; r < reps; ++r) {
         json one = run_delcert(manifold, ps, threads, seed, r == 0 ? out_dir : std::string(),
-                               c.manifold + "-" + std::to_string(c.count));
+                               c.manifold + "-" + std::to_string(c.count) + (sweep.empty() ? "" : "-gamma0-" + g), g,
+                               time_limit);
         totals.push_back(one["time_seconds"]["total"].get<double>());
         if (r == 0) d = one;
         else if (one["points_added"] != d["points_added"]) d["warning"] = "runs differ: the refiner is not deterministic";
@@ -232,8 +266,11 @@ int main(int argc, char** argv) {
       std::sort(sorted.begin(), sorted.end());
       d["total_seconds_runs"] = totals;
       d["total_seconds_median"] = sorted[sorted.size() / 2];
-      e["delcert"] = d;
+      std::cerr << " [gamma0 " << g << ": +" << d["points_added"] << " points, " << d["total_seconds_median"] << " s]" << std::flush;
+      if (sweep.empty()) e["delcert"] = d;
+      sweep.push_back(d);
     }
+    if (sweep.size() > 1) e["gamma0_sweep"] = sweep;
     if (gudhi) {
       std::cerr << ", gudhi" << std::flush;
       e["gudhi"] = run_gudhi(ps, planes, manifold.intrinsic_dimension(), threads, max_perturb, gudhi_limit);
