@@ -560,7 +560,7 @@ PYBIND11_MODULE(delcert, m) {
         "points: a float64 array (n, N) or a points file path.");
 
   m.def("refine", &py_refine, py::arg("manifold"), py::arg("points") = py::none(), py::arg("eps") = py::none(),
-        py::arg("mode") = "practical", py::arg("gamma0") = "0.1", py::arg("alpha") = "0.3", py::arg("beta") = "1.1",
+        py::arg("mode") = "practical", py::arg("gamma0") = "0.15", py::arg("alpha") = "0.3", py::arg("beta") = "1.1",
         py::arg("delta0") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0, py::arg("max_inserted") = 0,
         py::arg("max_rounds") = 0, py::arg("out") = py::none(), py::arg("max_points") = 0,
         "Refines a sample of M until its tangential complex is thick, protected and consistent\n"

@@ -35,7 +35,7 @@ struct ExactParameter {
 // them resolved.
 struct Constants {
   std::optional<ExactParameter> eps;  // absent: two significant digits above the input's largest R_p
-  ExactParameter gamma0{mpq_class(1, 10)};
+  ExactParameter gamma0{mpq_class(3, 20)};
   ExactParameter alpha{mpq_class(3, 10)};
   ExactParameter beta{mpq_class(11, 10)};
   std::optional<ExactParameter> delta0;  // absent: default_delta0(Γ0, m)
@@ -78,7 +78,7 @@ void resolve_delta0(Constants& c, int m);
 // The constants as typed (command-line text, or the Python module's): an absent ε or δ0 was not given.
 struct ConstantTexts {
   std::optional<std::string> eps, delta0;
-  std::string gamma0 = "0.1", alpha = "0.3", beta = "1.1";
+  std::string gamma0 = "0.15", alpha = "0.3", beta = "1.1";
 };
 // An exact rational option ("0.1", "1/10", "1e-1"); throws io::InputError naming `option` otherwise.
 ExactParameter parse_rational_option(const std::string& option, const std::string& text);

@@ -64,7 +64,7 @@ TEST(RefineCommand, WritesFourFilesDeterministically) {
   EXPECT_EQ(report["format"], "delcert-refine-report v1");
   EXPECT_EQ(report["converged"], true);
   EXPECT_EQ(report["mode"], "practical");
-  EXPECT_EQ(report["parameters"]["delta0"], "0.01");  // Γ0^2 by default for m = 2
+  EXPECT_EQ(report["parameters"]["delta0"], "0.0225");  // Γ0^2 by default for m = 2
   EXPECT_EQ(report["hypotheses"]["checks"].size(), 6u);
   EXPECT_EQ(report["hypotheses"]["checks"][0]["name"], "H0");
   EXPECT_EQ(report["final"]["inconsistent_stars"], 0);
@@ -76,8 +76,8 @@ TEST(RefineCommand, WritesFourFilesDeterministically) {
   EXPECT_EQ(claims["star_radius"], "0.25");  // R_p(s) < eps; the refiner does not claim covering
   EXPECT_FALSE(claims.contains("covering"));
   EXPECT_EQ(claims["sparsity"], "1/36");  // eps/9, exact
-  EXPECT_EQ(claims["gamma0"], "0.1");
-  EXPECT_EQ(claims["power_protection"], "1/12960000");  // 0.01^2 (0.25/9)^2
+  EXPECT_EQ(claims["gamma0"], "0.15");
+  EXPECT_EQ(claims["power_protection"], "0.000000390625");  // 0.0225^2 (0.25/9)^2, exact
   EXPECT_EQ(claims.size(), 5u);
 }
 
@@ -91,7 +91,7 @@ TEST(RefineCommand, PaperModeReportsTheHypotheses) {
   const auto& checks = report["hypotheses"]["checks"];
   EXPECT_EQ(checks[0]["status"], "holds");  // alpha = 0.25 < 1/2
   EXPECT_EQ(checks[1]["status"], "holds");  // beta = 3 >= 2 / ((1 - 1e-4)(0.75 - ...)) ≈ 2.67
-  EXPECT_EQ(checks[2]["status"], "fails");  // Gamma0 = 0.1 >= 1/(B+1)
+  EXPECT_EQ(checks[2]["status"], "fails");  // Gamma0 = 0.15 >= 1/(B+1)
   EXPECT_EQ(checks[5]["status"], "fails");  // eps = 0.3 is far above the H5 bound
   EXPECT_TRUE(report["hypotheses"]["max_eps"].is_number());
   EXPECT_FALSE(report.contains("practical_rules"));

@@ -167,6 +167,7 @@ TEST(Refiner, PickValidRejectsHitCandidates) {
   RefineParameters p;
   p.mode = RefineMode::paper;
   p.constants.eps = exact("0.4");
+  p.constants.gamma0 = exact("0.1");
   p.constants.delta0 = exact("0.1");
   auto r = refine(M, pts, p);
   const auto& st = r.rules[Rule::bad_cosph];
