@@ -455,8 +455,7 @@ TEST(RestrictedCell, AFacePointProvesAnEdgeInNoMSimplex) {
       for (int k = 0; k < d; ++k) n2 += c[k] * c[k];
       EXPECT_NEAR(static_cast<double>(n2), 1.0, 1e-9);
       for (std::size_t q = 2; q < P.size(); ++q) EXPECT_GT(dist2(q), dist2(0)) << d << " " << q;
-      if (p == 0) EXPECT_TRUE(R.vertices.empty());
-      if (p == 1) EXPECT_FALSE(R.vertices.empty());  // the ring's outer rim
+      EXPECT_EQ(R.vertices.empty(), p == 0);  // none at p; at q, the ring's outer rim
       for (const auto& v : R.vertices)
         EXPECT_FALSE(std::includes(v.simplex.begin(), v.simplex.end(), f.simplex.begin(), f.simplex.end()));
       std::printf("[ face point ] S^%d, cell of %d: %zu vertices, %ld boxes\n", d - 1, p, R.vertices.size(), R.boxes);
