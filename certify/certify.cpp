@@ -35,6 +35,8 @@ namespace {
 
 using exact::Tri;
 
+Simplex to_simplex(std::span<const int> s) { return {s.begin(), s.end()}; }  // a StarReport's cell, for a witness
+
 // Is s in star(v)? Proven yes, proven no, or unknown, from the analysis of v.
 // (s is an m-simplex containing r.p; in verify mode it is one of the claimed simplices at r.p.)
 Tri member(const StarReport& r, const Simplex& s) {
@@ -43,7 +45,7 @@ Tri member(const StarReport& r, const Simplex& s) {
     if (c.simplex == s && (c.degenerate || c.conflict >= 0)) return Tri::no;  // a point in its ball
   if (r.state != StarReport::State::proven) return Tri::unknown;
   for (int i = 0; i < r.cells; ++i)
-    if (r.simplex(i) == s) return Tri::yes;
+    if (std::ranges::equal(r.simplex(i), s)) return Tri::yes;
   return Tri::no;
 }
 
@@ -389,7 +391,7 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
     }
     R.cells += r.cells;
     if (r.min_margin.lo < min_margin.lo)
-      margin_at = {{"simplex", r.simplex(r.min_margin_cell)}, {"at_vertex", r.p}, {"point", r.min_margin_point}};
+      margin_at = {{"simplex", to_simplex(r.simplex(r.min_margin_cell))}, {"at_vertex", r.p}, {"point", r.min_margin_point}};
     min_margin = {std::min(min_margin.lo, r.min_margin.lo), std::min(min_margin.hi, r.min_margin.hi)};
     for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) {
@@ -447,7 +449,7 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
       continue;
     }
     R.cells += r.cells;
-    if (r.max_radius2.hi > max_r2.hi) radius_at = {{"simplex", r.simplex(r.max_radius_cell)}, {"at_vertex", r.p}};
+    if (r.max_radius2.hi > max_r2.hi) radius_at = {{"simplex", to_simplex(r.simplex(r.max_radius_cell))}, {"at_vertex", r.p}};
     max_r2 = {std::max(max_r2.lo, r.max_radius2.lo), std::max(max_r2.hi, r.max_radius2.hi)};
     for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) continue;  // not a cell: check 6 is undecided
@@ -769,13 +771,11 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       rd.add_witness(vertex_witness(s));
     }
     for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
-      bool face = false;
-      for (const auto& g : given->simplices) {
-        Simplex t = g;
-        std::sort(t.begin(), t.end());
-        face = face || std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
-      }
-      if (face) continue;
+      if (std::any_of(given->simplices.begin(), given->simplices.end(), [&](Simplex t) {
+            std::sort(t.begin(), t.end());
+            return std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
+          }))
+        continue;
       ++missing;
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
     }

@@ -30,6 +30,7 @@
 #include <gmpxx.h>
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -89,8 +90,13 @@ struct StarReport {
   std::vector<int> vertices;
   int cells = 0, min_margin_cell = -1, min_margin_point = -1, max_radius_cell = -1;
   exact::Interval min_margin{INFINITY, INFINITY}, max_radius2{-INFINITY, -INFINITY};
-  Simplex simplex(int i) const { const std::size_t k = vertices.size() / cells; return Simplex(vertices.data() + i * k, vertices.data() + i * k + k); }
-  std::vector<Simplex> simplices() const { std::vector<Simplex> s; for (int i = 0; i < cells; ++i) s.push_back(simplex(i)); return s; }
+  // Cell i's simplex, read in place (no allocation: check 4 compares it for every simplex at every vertex).
+  std::span<const int> simplex(int i) const { const std::size_t k = vertices.size() / cells; return {vertices.data() + i * k, k}; }
+  std::vector<Simplex> simplices() const {
+    std::vector<Simplex> s;
+    for (int i = 0; i < cells; ++i) s.emplace_back(simplex(i).begin(), simplex(i).end());
+    return s;
+  }
 };
 
 // `claimed`: the m-simplices of the given complex that contain p (null in audit mode).

@@ -437,7 +437,7 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
     batch.clear();
     sampling::Random gen = *rng_;
     for (int j = 0; j < size; ++j) {
-      Drawn d{pick_in_region(M_, p, *frame, region, gen, Rp), 0, false, false, gen};
+      Drawn d{pick_in_region(M_, p, *frame, region, gen, Rp), 0, false, false, gen};  // (braces: in order, so `after` is the state after the draw)
       if (d.x) d.d2 = index_.nearest_distance2(manifold::as_span(*d.x)), d.sparse_ok = paper_ || d.d2 > sparse2;
       batch.push_back(std::move(d));
     }
