@@ -6,6 +6,7 @@
 #include <set>
 
 #include "certify/certify.hpp"
+#include "certify/restricted.hpp"
 #include "exact/number_types.hpp"
 #include "exact/polynomial.hpp"
 #include "io/complex.hpp"
@@ -249,6 +250,28 @@ TEST(RestrictedChecks, ExactlyDegenerateInputIsNeverCertified) {
 
 // Adversarial magnitudes: the octahedron scaled by 2^k on the sphere of radius 2^k. Whatever the
 // verdicts, a certified covering bound is never below the true value sqrt(2 - 2/sqrt 3) 2^k.
+// A cell that runs out of its box budget nearly done (its only undecided boxes the few left) is
+// analysed again with 4 times the budget: with a budget below what the cells of a sphere sample
+// need, every cell still completes, in a later round, with the same Del_RM as a large budget.
+TEST(RestrictedChecks, ACellOutOfBoxesNearlyDoneIsRetriedWithALargerBudget) {
+  const io::PointSet P = spread_sphere(3, 60, 0.3, 11);
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
+  const detail::PointGrid grid(P, 2);
+  RestrictedDelaunayOptions o;
+  const RestrictedDelaunay full = compute_restricted_delaunay(F, P, grid, o);
+  ASSERT_TRUE(full.covering_certified) << full.reason;
+  long most = 0;
+  for (const auto& c : full.cells) most = std::max(most, c.boxes);
+  o.cell.max_boxes = most * 3 / 4;  // some cells run out
+  const RestrictedDelaunay small = compute_restricted_delaunay(F, P, grid, o);
+  EXPECT_TRUE(small.covering_certified) << small.reason;
+  EXPECT_GT(small.rounds_used, 1);
+  ASSERT_EQ(small.simplices.size(), full.simplices.size());
+  for (std::size_t i = 0; i < full.simplices.size(); ++i) EXPECT_EQ(small.simplices[i].simplex, full.simplices[i].simplex);
+  std::printf("[ box budget ] largest cell %ld boxes; with a budget of %ld: %d rounds\n", most, o.cell.max_boxes,
+              small.rounds_used);
+}
+
 TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
   TempDir dir("restricted-scaled");
   int certified = 0;
