@@ -690,9 +690,15 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                   {"attained_near", location_json(R.cells[R.covering_point].covering_location)},
                   {"in_the_cell_of", R.covering_point}};
   cov.details = {{"assumptions",
-                  {{"charts", R.reach_slabs == 0 ? "none: no reach and no graph property is assumed; the other sheets of "
-                                                   "M in each ball are excluded box by box, or the cell is analysed in a "
-                                                   "rational parametrisation of the verified shape (docs/design.md §3.8)"
+                  {{"charts", R.reach_slabs == 0 && R.rational_chart_cells == 0
+                                  ? "none: no reach and no graph property is assumed; the other sheets of "
+                                    "M in each ball are excluded box by box (docs/design.md §3.8)"
+                              : R.reach_slabs == 0
+                                  ? "none: no reach and no graph property is assumed; " +
+                                        std::to_string(R.rational_chart_cells) +
+                                        " cells are analysed in a rational parametrisation of the verified shape "
+                                        "(identities checked exactly), in the others the other sheets of M are "
+                                        "excluded box by box (docs/design.md §3.8)"
                                                  : "the reach of M is at least " + spec.reach->text + " (the spec's, " +
                                                        "assumed): the graph lemma (docs/design.md §3.8) took " +
                                                        std::to_string(R.reach_slabs) + " chart slabs"},

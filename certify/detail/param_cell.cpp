@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <unordered_set>
 #include <stdexcept>
 #include <utility>
 
@@ -14,8 +15,10 @@
 #include "exact/enclosed_polynomial.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
+#include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"
 #include "exact/polynomial.hpp"
+#include "exact/small_vector.hpp"
 
 namespace delcert::certify::detail {
 
@@ -113,6 +116,45 @@ std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<cons
   return C;
 }
 
+// B(E_ij) for the nine matrix units: R(y)_ij = y^T B(E_ij) y.
+const std::array<Mat4, 9>& davenport_units() {
+  static const std::array<Mat4, 9> units = [] {
+    std::array<Mat4, 9> u;
+    for (int ij = 0; ij < 9; ++ij) {
+      std::array<mpq_class, 9> unit{};
+      unit[ij] = 1;
+      u[ij] = davenport(unit);
+    }
+    return u;
+  }();
+  return units;
+}
+
+// R(y) R(y)^T = |y|^4 I for the quaternion y = (y1..y4) as exact polynomials in 4 variables
+// (the rotation of y times |y|^2 is |y|^2 times an orthogonal matrix); checked once per process.
+bool quaternion_identity() {
+  static const bool holds = [] {
+    std::array<Polynomial, 9> R;
+    Polynomial n2(4);
+    for (int s = 0; s < 4; ++s) n2 = n2 + Polynomial::variable(s, 4) * Polynomial::variable(s, 4);
+    for (int ij = 0; ij < 9; ++ij) {
+      R[ij] = Polynomial(4);
+      for (int s = 0; s < 4; ++s)
+        for (int t = 0; t < 4; ++t)
+          if (davenport_units()[ij][s][t] != 0)
+            R[ij] = R[ij] + (Polynomial::variable(s, 4) * Polynomial::variable(t, 4)).scaled(davenport_units()[ij][s][t]);
+    }
+    const Polynomial n4 = n2 * n2;
+    for (int i = 0; i < 3; ++i)
+      for (int k = i; k < 3; ++k) {
+        const Polynomial dot = R[3 * i] * R[3 * k] + R[3 * i + 1] * R[3 * k + 1] + R[3 * i + 2] * R[3 * k + 2];
+        if (!(i == k ? dot - n4 : dot).is_zero()) return false;
+      }
+    return true;
+  }();
+  return holds;
+}
+
 std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
   std::array<mpq_class, 9> pq;
   for (int i = 0; i < 9; ++i) {
@@ -120,12 +162,28 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
     pq[i] = p[i];
   }
   const std::array<double, 4> e = top_eigenvector(davenport(pq));
-  std::array<mpq_class, 4> y;
-  for (int i = 0; i < 4; ++i) y[i] = dyadic(e[i]);
+  std::array<mpq_class, 4> y;  // integers (|y| about 1024): any nonzero y~ is correct, small ones are fast
+  for (int i = 0; i < 4; ++i) y[i] = std::nearbyint(1024 * e[i]);
   const mpq_class y2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3];
   if (y2 == 0) return std::nullopt;
   const mpq_class &a = y[0], &b = y[1], &c = y[2], &d = y[3];
   const std::array<std::array<mpq_class, 4>, 3> E{{{-b, a, -d, c}, {-c, d, a, -b}, {-d, -c, b, a}}};
+  // (a) in two exact steps. (1) Once: R(y) R(y)^T = |y|^4 I as polynomials in y (quaternion_identity).
+  // (2) Per chart: y~, e1, e2, e3 pairwise orthogonal with |e_k|^2 = |y~|^2, so that
+  // |y~ + E v|^2 = |y~|^2 (1 + |v|^2) = D(v). Then X = R(y~ + E v) has X X^T = D^2 I: X / D is
+  // orthogonal, and its determinant, continuous on the connected R^3 with values +-1, is its value
+  // at v = 0 (det R(y~) / |y~|^6, checked > 0 below): phi(v) is in SO(3).
+  if (!quaternion_identity()) throw std::logic_error("restricted cell: R(y) R(y)^T != |y|^4 I");
+  for (int k = 0; k < 3; ++k) {
+    mpq_class dy(0);
+    for (int i = 0; i < 4; ++i) dy += y[i] * E[k][i];
+    if (dy != 0) throw std::logic_error("restricted cell: the SO(3) chart's basis is not orthogonal to y~");
+    for (int l = 0; l < 3; ++l) {
+      mpq_class dk(0);
+      for (int i = 0; i < 4; ++i) dk += E[k][i] * E[l][i];
+      if (dk != (k == l ? y2 : mpq_class(0))) throw std::logic_error("restricted cell: the SO(3) chart's basis is not orthogonal");
+    }
+  }
   const int m = 3;
   std::array<Polynomial, 4> Y;  // y~ + E v
   for (int i = 0; i < 4; ++i) {
@@ -134,29 +192,17 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
   }
   RationalChart C;
   C.D = (Polynomial::constant(1, m) + sum_of_squares(m)).scaled(y2);
+  std::array<std::array<Polynomial, 4>, 4> YY;  // Y_s Y_t, s <= t
+  for (int s = 0; s < 4; ++s)
+    for (int t = s; t < 4; ++t) YY[s][t] = Y[s] * Y[t];
   for (int ij = 0; ij < 9; ++ij) {
-    std::array<mpq_class, 9> unit{};
-    unit[ij] = 1;
-    const Mat4 B = davenport(unit);
+    const Mat4& B = davenport_units()[ij];
     Polynomial Xij(m);
     for (int s = 0; s < 4; ++s)
-      for (int t = 0; t < 4; ++t)
-        if (B[s][t] != 0) Xij = Xij + (Y[s] * Y[t]).scaled(B[s][t]);
+      for (int t = s; t < 4; ++t)
+        if (const mpq_class w = s == t ? B[s][s] : B[s][t] + B[t][s]; w != 0) Xij = Xij + YY[s][t].scaled(w);
     C.X.push_back(std::move(Xij));
   }
-  // (a): X X^T = D^2 I and det X = D^3.
-  auto x = [&](int i, int j) -> const Polynomial& { return C.X[3 * i + j]; };
-  const Polynomial D2 = C.D * C.D;
-  for (int i = 0; i < 3; ++i)
-    for (int k = i; k < 3; ++k) {
-      const Polynomial dot = x(i, 0) * x(k, 0) + x(i, 1) * x(k, 1) + x(i, 2) * x(k, 2);
-      if (!(i == k ? dot - D2 : dot).is_zero())
-        throw std::logic_error("restricted cell: the SO(3) rational chart is not orthogonal");
-    }
-  const Polynomial det = x(0, 0) * (x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1)) -
-                         x(0, 1) * (x(1, 0) * x(2, 2) - x(1, 2) * x(2, 0)) +
-                         x(0, 2) * (x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0));
-  if (!(det - D2 * C.D).is_zero()) throw std::logic_error("restricted cell: the SO(3) rational chart has det != 1");
   std::vector<mpq_class> p0(9);  // phi(0) = R(y~) / |y~|^2
   for (int ij = 0; ij < 9; ++ij) {
     const auto& t0 = C.X[ij].terms();
@@ -166,6 +212,9 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
         c0 = t.coefficient;
     p0[ij] = c0 / y2;
   }
+  const mpq_class det0 = p0[0] * (p0[4] * p0[8] - p0[5] * p0[7]) - p0[1] * (p0[3] * p0[8] - p0[5] * p0[6]) +
+                         p0[2] * (p0[3] * p0[7] - p0[4] * p0[6]);
+  if (sgn(det0) <= 0) throw std::logic_error("restricted cell: the SO(3) rational chart has det != 1");
   exact::UpwardRounding up;
   C.t = half_width(IA(r) + distance_to(p, p0), exact::sqrt(IA(8)));
   if (!(C.t > 0)) return std::nullopt;
@@ -219,6 +268,18 @@ struct Quadratic {
       if (pair[k][1] < m) v += C[k] * (W[pair[k][0]] * W[pair[k][1]]);
     return v;
   }
+  // This + t B (interval coefficients). Under upward rounding.
+  void add(const Quadratic& B, const IA& T) {
+    a += T * B.a;
+    for (int i = 0; i < 3; ++i) b[i] += T * B.b[i], G[i] += T * B.G[i], C[i] += T * B.C[i];
+  }
+  // dP/dv_i at the centre, in double from the lower ends (a guess for choosing combinations).
+  double slope(int i, const double* c) const {
+    double g = b[i].inf() + 2 * G[i].inf() * c[i];
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m && (pair[k][0] == i || pair[k][1] == i)) g += C[k].inf() * c[pair[k][0] == i ? pair[k][1] : pair[k][0]];
+    return g;
+  }
   // The natural extension over the box c + W, intersected with range(): the denominators
   // D = k (1 + |v|^2) are then enclosed by intervals >= k > 0 on every box.
   IA tight_range(const IA* c, const IA* W) const {
@@ -248,7 +309,10 @@ struct Centred {
 
 struct Work {
   Box V;
-  std::vector<int> S;  // positions in cands_ of the candidates other than p
+  exact::SmallVector<int, 16> S;  // positions in cands_ of the candidates other than p
+  // Dropped from S by COMBINED SIGNS (strictly farther than p on Vor(p) in the box, not on all of
+  // it): kept to discard sub-boxes where they are certainly closer, as in rvd.cpp.
+  exact::SmallVector<int, 16> far;
   int depth = 0;
   bool vertex_decided = false;  // as rvd.cpp: Krawczyk decided this box or an ancestor with |S| = m
 };
@@ -266,25 +330,41 @@ class Analysis final : public ParamCell {
     exact::UpwardRounding up;
     r2_ = IA(r_) * IA(r_);
     // Y_i = X_i - p_i D: phi(v) - p = Y(v) / D(v).
-    std::vector<EnclosedPolynomial> Y;
+    D_enc_ = D;
     for (int i = 0; i < N_; ++i) {
-      Y.push_back(EnclosedPolynomial::from_exact(chart.X[i]) + D.scaled(Interval::point(-pp[i])));
-      Y_.emplace_back(Y.back());
+      Y_enc_.push_back(EnclosedPolynomial::from_exact(chart.X[i]) + D.scaled(Interval::point(-pp[i])));
+      Y_.emplace_back(Y_enc_.back());
     }
     for (int q : grid.ball(pp, 2 * r_)) {  // every point of the closed ball B(p, 2r) (rvd.hpp)
       if (q == p) continue;
+      // P_q = |q - p|^2 D - 2 (q - p).Y, its coefficients enclosed from those of D and Y.
       IA c(0);
-      std::vector<EnclosedPolynomial> terms;
+      Quadratic P = D_;
       for (int i = 0; i < N_; ++i) {
         const IA d = IA(points.point(q)[i]) - IA(pp[i]);
         c += exact::square(d);
-        terms.push_back(Y[i].scaled(exact::to_interval(IA(-2) * d)));
       }
-      terms.push_back(D.scaled(exact::to_interval(c)));
+      P.a *= c;
+      for (int i = 0; i < 3; ++i) P.b[i] *= c, P.G[i] *= c, P.C[i] *= c;
+      for (int i = 0; i < N_; ++i) P.add(Y_[i], IA(-2) * (IA(points.point(q)[i]) - IA(pp[i])));
       index_.push_back(q);
-      polys_.push_back(EnclosedPolynomial::sum(terms, m_));  // P_q = |q - p|^2 D - 2 (q - p).Y
-      cands_.emplace_back(polys_.back());
+      cands_.push_back(P);
     }
+  }
+
+  // P_q as an EnclosedPolynomial (Krawczyk's rows), from the same enclosures of D and Y.
+  EnclosedPolynomial polynomial(int i) const {
+    exact::UpwardRounding up;
+    const auto pp = points_.point(p_), qq = points_.point(index_[i]);
+    IA c(0);
+    std::vector<EnclosedPolynomial> terms;
+    for (int v = 0; v < N_; ++v) {
+      const IA d = IA(qq[v]) - IA(pp[v]);
+      c += exact::square(d);
+      terms.push_back(Y_enc_[v].scaled(exact::to_interval(IA(-2) * d)));
+    }
+    terms.push_back(D_enc_.scaled(exact::to_interval(c)));
+    return EnclosedPolynomial::sum(terms, m_);
   }
 
   double first_pass() override {
@@ -339,14 +419,14 @@ class Analysis final : public ParamCell {
     }
     if (d2) *d2 = s;
   }
-  void undecided(const Box& V, const std::vector<int>& S, std::string reason) {
+  void undecided(const Box& V, std::span<const int> S, std::string reason) {
     Box X;
     image(V, &X, nullptr);
     std::vector<double> loc;
     for (const auto& i : X) loc.push_back(i.midpoint());
     report_.undecided.push_back({std::move(loc), simplex_of(S), std::move(reason)});
   }
-  std::vector<int> simplex_of(const std::vector<int>& S) const {
+  std::vector<int> simplex_of(std::span<const int> S) const {
     std::vector<int> s{p_};
     for (int i : S) s.push_back(index_[i]);
     std::sort(s.begin(), s.end());
@@ -363,13 +443,19 @@ class Analysis final : public ParamCell {
     // A candidate certainly closer than p on all of phi(V) leaves no point of Vor(p) there; one
     // certainly farther can neither bound the cell in V nor exclude any part of it: dropped.
     const Centred B(w.V);
-    std::vector<int> S;
-    for (int i : w.S) {
-      const IA s = cands_[i].range(B.c.data(), B.W.data());
-      if (s.sup() < 0) return discard();
-      if (!(s.inf() > 0)) S.push_back(i);
+    for (auto* list : {&w.S, &w.far}) {
+      std::size_t out = 0;
+      for (int i : *list) {
+        const IA s = cands_[i].range(B.c.data(), B.W.data());
+        if (s.sup() < 0) return discard();
+        if (!(s.inf() > 0)) (*list)[out++] = i;
+      }
+      list->resize(out);
     }
-    w.S = std::move(S);
+    const int all = static_cast<int>(w.S.size() + w.far.size());
+    if (all >= 2 && all <= opt_.combined_signs_max && (refining_ || static_cast<int>(w.S.size()) >= m_) &&
+        combined_signs(w, B))
+      return discard();
     const int n = static_cast<int>(w.S.size()) + 1;
     bool resolved = n <= m_;  // a vertex needs m + 1 nearest points, all in {p} + S
     if (n == m_ + 1) resolved = w.vertex_decided || krawczyk_vertex(w);
@@ -378,15 +464,14 @@ class Analysis final : public ParamCell {
     for (const auto& i : w.V) widest = std::max(widest, i.width());
     const double raw_bound = exact::sqrt(d2).sup();
     const double bound = std::isnan(raw_bound) ? INFINITY : raw_bound;
-    const bool fine = n == 1 || widest <= opt_.covering_width * t_ || w.depth >= opt_.max_depth ||
+    const bool fine = (n == 1 && w.far.empty()) || widest <= opt_.covering_width * t_ || w.depth >= opt_.max_depth ||
                       (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
     if (resolved && !refining_ && (!fine || n >= 2)) {  // waits for the second pass (rvd.cpp)
       pending_.push_back(std::move(w));
       return;
     }
-    std::vector<int> face, idx;
-    for (int i : w.S) idx.push_back(index_[i]);
-    const bool faces_ok = !resolved || n == 1 || faces_known(p_, m_, idx, report_.vertices, report_.face_points, face);
+    std::vector<int> face;
+    const bool faces_ok = !resolved || n == 1 || known_faces(w.S, face);
     const bool purity_floor = widest <= opt_.purity_width * t_;
     if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {
@@ -421,12 +506,127 @@ class Analysis final : public ParamCell {
         ch.V[a] = (corner >> a) & 1 ? Interval{mid, w.V[a].hi} : Interval{w.V[a].lo, mid};
       }
       ch.S = corner ? w.S : std::move(w.S);
+      ch.far = corner ? w.far : std::move(w.far);
       ch.depth = w.depth + 1;
       ch.vertex_decided = w.vertex_decided;
       stack.push_back(std::move(ch));
     }
   }
   void discard() { ++report_.discarded; }
+
+  // PURITY (cell_checks.hpp) for a resolved box's S, remembered once true (the vertices found only
+  // grow, so a known face stays known): the key is S itself, at most 4 positions of 16 bits.
+  bool known_faces(std::span<const int> S, std::vector<int>& face) {
+    const bool cacheable = S.size() <= 4 && cands_.size() < 0xFFFF;
+    std::uint64_t key = 0;
+    for (int i : S) key = key << 16 | static_cast<std::uint64_t>(i + 1);
+    if (cacheable && faces_known_.count(key)) return true;
+    std::vector<int> idx;
+    for (int i : S) idx.push_back(index_[i]);
+    if (!faces_known(p_, m_, idx, report_.vertices, report_.face_points, face)) return false;
+    if (cacheable) faces_known_.insert(key);
+    return true;
+  }
+
+  // COMBINED SIGNS (rvd.cpp's argument, unchanged: R = the points of phi(V) where every P_q of S
+  // and `far` is >= 0 holds every point of Vor(p) there, D > 0). With t_i >= 0: P_A + sum t_i P_Bi
+  // < 0 on V empties R (true: discard); P_A - sum t_i P_Bi > 0 on V (A in S) makes A strictly
+  // farther than p on R: A moves to `far`. The t_i are chosen in double (pairs: where one slope of
+  // the combination vanishes at the centre; m of them, near a vertex: all slopes), and only the
+  // enclosure of the combination, with those exact doubles, decides.
+  bool combined_signs(Work& w, const Centred& B) const {
+    int n = static_cast<int>(w.S.size());
+    const int all = n + static_cast<int>(w.far.size());
+    auto at = [&](int i) -> const Quadratic& { return cands_[i < n ? w.S[i] : w.far[i - n]]; };
+    double c[3], h[3];
+    for (int a = 0; a < m_; ++a) c[a] = B.c[a].inf(), h[a] = std::max(-B.W[a].inf(), B.W[a].sup());
+    // Each candidate near the centre, in double from the lower ends of its coefficients: value,
+    // slopes and second-order coefficients (only to choose t and skip hopeless combinations).
+    struct Local {
+      double f, g[3], G[3], C[3];
+    };
+    if (all > kMaxCombined) return false;
+    Local L[kMaxCombined];
+    for (int i = 0; i < all; ++i) {
+      const Quadratic& Q = at(i);
+      Local& l = L[i];
+      l.f = Q.a.inf();
+      for (int a = 0; a < m_; ++a) l.f += (Q.b[a].inf() + Q.G[a].inf() * c[a]) * c[a], l.g[a] = Q.slope(a, c), l.G[a] = Q.G[a].inf();
+      for (int k = 0; k < 3; ++k)
+        if (Quadratic::pair[k][1] < m_) l.f += Q.C[k].inf() * c[Quadratic::pair[k][0]] * c[Quadratic::pair[k][1]];
+      for (int k = 0; k < 3; ++k) l.C[k] = Q.C[k].inf();
+    }
+    // sign * (the extreme of L_A + sum t_i L_Bi towards -sign) over the box, approximately.
+    auto approx = [&](int A, int j, const int* Bs, const double* t, double sign) {
+      double f = L[A].f, q = 0;
+      for (int a = 0; a < m_; ++a) {
+        double g = L[A].g[a], G = L[A].G[a];
+        for (int i = 0; i < j; ++i) g += t[i] * L[Bs[i]].g[a], G += t[i] * L[Bs[i]].G[a];
+        q -= std::abs(g) * h[a] + (sign > 0 ? std::max(-G, 0.0) : std::max(G, 0.0)) * h[a] * h[a];
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (Quadratic::pair[k][1] >= m_) continue;
+        double C = L[A].C[k];
+        for (int i = 0; i < j; ++i) C += t[i] * L[Bs[i]].C[k];
+        q -= std::abs(C) * h[Quadratic::pair[k][0]] * h[Quadratic::pair[k][1]];
+      }
+      for (int i = 0; i < j; ++i) f += t[i] * L[Bs[i]].f;
+      return sign * f + q;  // > 0: the combination looks decided
+    };
+    auto range_of = [&](int A, int j, const int* Bs, const double* t) {
+      Quadratic Q = at(A);
+      for (int i = 0; i < j; ++i) Q.add(at(Bs[i]), IA(t[i]));
+      return Q.range(B.c.data(), B.W.data());
+    };
+    // sign -1: sup (P_A + t P_B) < 0 for some t > 0?  sign +1: inf (P_A - t P_B) > 0?
+    auto decides = [&](int A, int Bi, double sign) {
+      double best = 0, best_v = 0;
+      for (int a = 0; a < m_; ++a) {
+        const double t = sign * L[A].g[a] / L[Bi].g[a], st = -sign * t;
+        if (!(t > 0) || !std::isfinite(t)) continue;
+        const double v = approx(A, 1, &Bi, &st, sign);
+        if (v > best_v) best_v = v, best = st;
+      }
+      if (best == 0) return false;
+      const IA f = range_of(A, 1, &Bi, &best);
+      return sign > 0 ? f.inf() > 0 : f.sup() < 0;
+    };
+    for (int i = 0; i < all; ++i)
+      for (int j = i + 1; j < all; ++j)
+        if (decides(i, j, -1)) return true;
+    char drop[kMaxCombined] = {};
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(i, j, 1);
+    if (n > m_)  // near a vertex: A against m others, the slopes matched at the centre
+      for (int A = 0; A < n; ++A)
+        for (int mask = 0, tried = 0; mask < (1 << (all - 1)) && tried < 8 && !drop[A]; ++mask) {
+          if (__builtin_popcount(mask) != m_) continue;
+          ++tried;
+          int Bs[3];
+          double M[9], rhs[3], t[3];
+          for (int o = 0, i = 0; i < m_; ++o)
+            if (mask >> o & 1) Bs[i++] = o < A ? o : o + 1;
+          for (int r = 0; r < m_; ++r) {
+            for (int i = 0; i < m_; ++i) M[r * m_ + i] = L[Bs[i]].g[r];
+            rhs[r] = L[A].g[r];
+          }
+          const double det = exact::determinant(M, m_);
+          if (!(std::abs(det) > 0) || !std::isfinite(det)) continue;
+          exact::cramer_solve(M, rhs, det, m_, t);
+          bool pos = true, neg = true;
+          for (int i = 0; i < m_; ++i) {
+            pos &= t[i] >= 0, neg &= t[i] <= 0;
+            if (!std::isfinite(t[i])) pos = neg = false;
+            t[i] = -t[i];  // P_A - sum t_i P_Bi has no slope at the centre
+          }
+          if (neg && approx(A, m_, Bs, t, -1) > 0 && range_of(A, m_, Bs, t).sup() < 0) return true;
+          if (pos && approx(A, m_, Bs, t, 1) > 0 && range_of(A, m_, Bs, t).inf() > 0) drop[A] = 1;
+        }
+    exact::SmallVector<int, 16> kept;
+    for (int i = 0; i < n; ++i) (drop[i] ? w.far : kept).push_back(w.S[i]);
+    w.S = std::move(kept);
+    return false;
+  }
 
   // Krawczyk on {P_q = 0 : q in S} in V (|S| = m). True when decided: the vertex of {p} + S in V
   // recorded (unique root, image enclosed, every other point strictly farther), or none in V.
@@ -436,7 +636,7 @@ class Analysis final : public ParamCell {
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
       std::vector<EnclosedPolynomial> rows;
-      for (int i : w.S) rows.push_back(polys_[i]);
+      for (int i : w.S) rows.push_back(polynomial(i));
       it = systems_.emplace(simplex, exact::ParametricSystem::from_enclosures(std::move(rows), 0)).first;
     }
     ++report_.krawczyk_calls;
@@ -495,9 +695,12 @@ class Analysis final : public ParamCell {
   double t_, r_ = 0;
   IA r2_;
   Quadratic D_;
-  std::vector<Quadratic> Y_;              // X_i - p_i D
-  std::vector<Quadratic> cands_;          // P_q
-  std::vector<EnclosedPolynomial> polys_;  // P_q, for Krawczyk
+  std::vector<Quadratic> Y_;                // X_i - p_i D
+  std::vector<Quadratic> cands_;            // P_q
+  EnclosedPolynomial D_enc_;                // D and Y, for Krawczyk's rows (polynomial())
+  std::vector<EnclosedPolynomial> Y_enc_;
+  static constexpr int kMaxCombined = 16;
+  std::unordered_set<std::uint64_t> faces_known_;  // candidate sets (known_faces' keys) whose faces are known   // COMBINED SIGNS on at most this many candidates
   std::vector<int> index_;        // cands_[i] is P_{index_[i]}
   std::map<std::vector<int>, exact::ParametricSystem> systems_;
   bool refining_ = false;

@@ -5,8 +5,8 @@
 //
 // A RATIONAL CHART at p is phi(v) = X(v) / D(v), v in R^m, with X (N polynomials) and D
 // polynomials with rational coefficients such that
-//   (a) D(v) > 0 and phi(v) is in M for every v in R^m: checked here for each chart as exact
-//       polynomial identities (below), so an error in a formula cannot pass unnoticed;
+//   (a) D(v) > 0 and phi(v) is in M for every v in R^m: checked here exactly, as polynomial
+//       identities over Q (below), so an error in a formula cannot pass unnoticed;
 //   (b) every x in M ∩ B(p, r) is phi(v) for some v in V0 = [-t, t]^m: a lemma per shape (below),
 //       with t computed under upward rounding.
 // Then the analysis of rvd.hpp runs on boxes V of V0 instead of (U, slab) pairs: every sign of
@@ -25,11 +25,13 @@
 // sin(theta / 2) < s = r' / (2 rho); if s < 1, theta < pi and |v| < s / sqrt(1 - s^2) = t.
 //
 // SO(3) in R^9 (x row-major). R(y) = (y^T B(E_ij) y)_ij with Davenport's B (intrinsic_engines.hpp):
-// the rotation of the quaternion y times |y|^2. y~ is a dyadic quaternion near the top eigenvector
+// the rotation of the quaternion y times |y|^2. y~ is an integer quaternion along the top eigenvector
 // of B(p) (any nonzero one is correct), (a, b, c, d) = y~ and E = [e1 e2 e3] with
 // e1 = (-b, a, -d, c), e2 = (-c, d, a, -b), e3 = (-d, -c, b, a): y~, e1, e2, e3 are pairwise
-// orthogonal, each of squared norm |y~|^2. phi(v) = R(y~ + E v) / (|y~|^2 (1 + |v|^2)); identities
-// (a): X X^T = D^2 I and det X = D^3, so phi(v) is in SO(3). Lemma (b): for unit quaternions y, z,
+// orthogonal, each of squared norm |y~|^2. phi(v) = R(y~ + E v) / (|y~|^2 (1 + |v|^2)). (a): the
+// polynomial identity R(y) R(y)^T = |y|^4 I in y (checked once) and the orthogonality relations of
+// y~, e1, e2, e3 (checked per chart) give X X^T = D^2 I, so phi(v) is orthogonal; det phi(v),
+// continuous on the connected R^3 with values in {1, -1}, is its value at 0 (checked exactly). Lemma (b): for unit quaternions y, z,
 // |R(y) - R(z)|^2 = 8 (1 - (y.z)^2). Let p~ = phi(0). Every x in SO(3) is R(y) for a unit y with
 // y.y~ >= 0; if x is in B(p, r) then |x - p~| < r + |p - p~| =: r', so the angle alpha between y
 // and y~ has sin alpha < s = r' / sqrt(8); if s < 1, y.y~ > 0 and y is proportional to y~ + E v
