@@ -690,8 +690,15 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                   {"attained_near", location_json(R.cells[R.covering_point].covering_location)},
                   {"in_the_cell_of", R.covering_point}};
   cov.details = {{"assumptions",
-                  {{"charts", R.reach_slabs == 0 ? "none: no reach and no graph property is assumed; the other sheets of "
-                                                   "M in each ball are excluded box by box (docs/design.md §3.8)"
+                  {{"charts", R.reach_slabs == 0 && R.rational_chart_cells == 0
+                                  ? "none: no reach and no graph property is assumed; the other sheets of "
+                                    "M in each ball are excluded box by box (docs/design.md §3.8)"
+                              : R.reach_slabs == 0
+                                  ? "none: no reach and no graph property is assumed; " +
+                                        std::to_string(R.rational_chart_cells) +
+                                        " cells are analysed in a rational parametrisation of the verified shape "
+                                        "(identities checked exactly), in the others the other sheets of M are "
+                                        "excluded box by box (docs/design.md §3.8)"
                                                  : "the reach of M is at least " + spec.reach->text + " (the spec's, " +
                                                        "assumed): the graph lemma (docs/design.md §3.8) took " +
                                                        std::to_string(R.reach_slabs) + " chart slabs"},
@@ -703,6 +710,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                  {"rounds", R.rounds_used},
                  {"incomplete_cells", R.incomplete_points.size()},
                  {"boxes", R.boxes},
+                 {"rational_chart_cells", R.rational_chart_cells},
                  {"krawczyk_calls", R.krawczyk_calls},
                  {"krawczyk_failures", R.krawczyk_failures}};
   if (!one_component && cov.verdict == Verdict::certified)
@@ -1082,6 +1090,7 @@ Certificate run_certify(const CertifyOptions& o) {
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal, intrinsic, equal_mi;
   std::optional<RestrictedDelaunay> R;
+  const VerifiedShape shape = verify_declared_shape(spec);  // (Del_M below verifies it again: cheap)
   if (o.skip_restricted || m > 3) {
     const std::string why = o.skip_restricted ? "" : "the certified restricted Voronoi diagram is built for m <= 3 (here m = " +
                                                          std::to_string(m) + ")";
@@ -1094,6 +1103,10 @@ Certificate run_certify(const CertifyOptions& o) {
     // (2k searches of a k-dimensional slab) never ends (SO(3)); below, it is as fast and assumes nothing.
     if (spec.reach && N - m >= 4) ro.cell.reach = sqrt_lower(spec.reach->squared);
     ro.cell.selector = spec.selector ? &*spec.selector : nullptr;
+    // A verified SO(3): rational charts (certify/detail/param_cell.hpp; 100 times faster there than the
+    // codimension-6 implicit chart). Spheres keep the implicit chart, faster on them (combined signs,
+    // the Lagrangian covering bound); the tests run both on spheres and require the same Del_RM.
+    if (shape.shape && shape.shape->kind == io::ShapeSpec::Kind::so3) ro.cell.shape = &*shape.shape;
     phase("checks 11-13 restricted Voronoi cells");
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);

@@ -99,20 +99,12 @@ std::string metric_mismatch(const io::ManifoldSpec& spec, const io::ShapeSpec& g
 
 }  // namespace
 
-IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
-                                             const detail::PointGrid& grid,
-                                             const std::vector<std::vector<int>>& candidates, int threads) {
+VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
   const int m = spec.intrinsic_dimension, N = spec.ambient_dimension;
-  for (const auto& s : candidates) {
-    if (static_cast<int>(s.size()) != m + 1) throw std::invalid_argument("an intrinsic candidate is not an m-simplex");
-    for (std::size_t i = 0; i < s.size(); ++i)
-      if (s[i] < 0 || static_cast<std::size_t>(s[i]) >= points.size() || (i && s[i - 1] >= s[i]))
-        throw std::invalid_argument("an intrinsic candidate is not a sorted set of point indices");
-  }
-  IntrinsicDelaunay D;
+  VerifiedShape V;
   if (!spec.metric) {
-    D.reason = "no closed-form geodesic distance: the spec declares no metric";
-    return D;
+    V.reason = "no closed-form geodesic distance: the spec declares no metric";
+    return V;
   }
   // A product whose factors are one shape this version handles, written as that shape: one sphere
   // or one SO(3) on x1..xN in order, or circles on (x1, x2), (x3, x4), ... in order.
@@ -141,34 +133,54 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
       g.kind = io::ShapeSpec::Kind::product_of_circles;
       for (const auto& f : g.factors) g.radii.push_back(f.radius);
     } else {
-      D.metric = "product";
-      D.reason = "Del_M for the product " + factors +
+      V.metric = "product";
+      V.reason = "Del_M for the product " + factors +
                  (circles ? " (circles not on the coordinate pairs (x1, x2), (x3, x4), ... in order)" : "") +
                  " is not built in this version (docs/design.md §12)";
-      return D;
+      return V;
     }
   }
   const bool sphere = g.kind == io::ShapeSpec::Kind::sphere && N == m + 1;
   const bool torus = g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m && static_cast<int>(g.radii.size()) == m;
   const bool so3 = g.kind == io::ShapeSpec::Kind::so3 && N == 9 && m == 3;
-  if (sphere || torus || so3) {
-    const std::string mismatch = metric_mismatch(spec, g);
-    if (!mismatch.empty()) {
-      D.metric = sphere ? "sphere" : torus ? "product_of_circles" : "so3";
-      D.reason = "the declared metric is not used: " + mismatch;
-      return D;
-    }
-    return sphere ? detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads)
-           : torus ? detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads)
-                   : detail::intrinsic_delaunay_so3(points, grid, candidates, threads);
-  }
-  D.metric = g.kind == io::ShapeSpec::Kind::so3 ? "so3"
+  V.metric = g.kind == io::ShapeSpec::Kind::so3 ? "so3"
              : g.kind == io::ShapeSpec::Kind::sphere ? "sphere"
              : g.kind == io::ShapeSpec::Kind::product_of_circles ? "product_of_circles"
                                                                  : "torus_of_revolution";
-  D.reason = "Del_M for the declared metric (" + D.metric + ", m = " + std::to_string(m) + ", N = " +
+  if (sphere || torus || so3) {
+    const std::string mismatch = metric_mismatch(spec, g);
+    if (!mismatch.empty()) {
+      V.reason = "the declared metric is not used: " + mismatch;
+      return V;
+    }
+    V.shape = std::move(g);
+    return V;
+  }
+  V.reason = "Del_M for the declared metric (" + V.metric + ", m = " + std::to_string(m) + ", N = " +
              std::to_string(N) + ") is not built in this version (docs/design.md §12)";
-  return D;
+  return V;
+}
+
+IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
+                                             const detail::PointGrid& grid,
+                                             const std::vector<std::vector<int>>& candidates, int threads) {
+  const int m = spec.intrinsic_dimension;
+  for (const auto& s : candidates) {
+    if (static_cast<int>(s.size()) != m + 1) throw std::invalid_argument("an intrinsic candidate is not an m-simplex");
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s[i] < 0 || static_cast<std::size_t>(s[i]) >= points.size() || (i && s[i - 1] >= s[i]))
+        throw std::invalid_argument("an intrinsic candidate is not a sorted set of point indices");
+  }
+  VerifiedShape V = verify_declared_shape(spec);
+  if (!V.shape) {
+    IntrinsicDelaunay D;
+    D.metric = V.metric, D.reason = V.reason;
+    return D;
+  }
+  const io::ShapeSpec& g = *V.shape;
+  return g.kind == io::ShapeSpec::Kind::sphere ? detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads)
+         : g.kind == io::ShapeSpec::Kind::so3  ? detail::intrinsic_delaunay_so3(points, grid, candidates, threads)
+                                               : detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads);
 }
 
 }  // namespace delcert::certify

@@ -27,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,19 @@ struct IntrinsicDelaunay {
   bool complete = false;          // `simplices` are ALL the m-simplices of Del_M(P), and Del_M is pure
   std::string reason;             // why not computed / not complete ("" when complete)
 };
+
+// The spec's declared metric, normalised (a product of one sphere, of one SO(3), or of circles on
+// (x1, x2), (x3, x4), ... in order, becomes that shape) and used only when the spec's equations
+// are exactly the shape's (up to nonzero rational factors and order; for SO(3) the selector a
+// positive multiple of det): then M IS that shape. `shape` is set only then (a round sphere with
+// N = m + 1, circles with N = 2m, SO(3)); otherwise `metric` names what was declared ("" for
+// none) and `reason` says why it is not used. Del_M (below) and the restricted cells' rational
+// charts (certify/rvd_param.hpp) both rest on it.
+struct VerifiedShape {
+  std::optional<io::ShapeSpec> shape;
+  std::string metric, reason;
+};
+VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec);
 
 // `candidates`: sorted vertex sets with m + 1 entries (duplicates allowed). Never throws on
 // geometric input; throws std::invalid_argument on a malformed candidate (wrong size, index out

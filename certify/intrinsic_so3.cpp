@@ -64,12 +64,6 @@
 
 namespace delcert::certify::detail {
 
-namespace {
-
-using exact::IntervalNumber;
-using nlohmann::json;
-using Mat4 = std::array<std::array<mpq_class, 4>, 4>;
-
 // B(p) with <R(x), p> = x^T B x (p row-major).
 Mat4 davenport(const std::array<mpq_class, 9>& p) {
   const mpq_class &p11 = p[0], &p12 = p[1], &p13 = p[2], &p21 = p[3], &p22 = p[4], &p23 = p[5], &p31 = p[6],
@@ -113,6 +107,12 @@ std::array<double, 4> top_eigenvector(const Mat4& B) {
   for (int i = 0; i < 4; ++i) v[i] = n > 0 ? A[i][best] / n : (i == 0);
   return v;
 }
+
+namespace {
+
+using exact::IntervalNumber;
+using nlohmann::json;
+
 
 struct Lift {
   std::array<IntervalNumber, 4> q;  // encloses the unit eigenvector q (q.h >= 0)

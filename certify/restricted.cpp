@@ -126,6 +126,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     const RestrictedCellReport& cell = R.cells[p];
     R.boxes += cell.boxes, R.krawczyk_calls += cell.krawczyk_calls, R.krawczyk_failures += cell.krawczyk_failures;
     R.chart_failures += cell.chart_failures, R.reach_slabs += cell.reach_slabs;
+    R.rational_chart_cells += cell.rational_chart;
     if (!cell.complete) R.incomplete_points.push_back(p);
     R.min_radius = std::min(R.min_radius, cell.graph_radius);
     if (cell.covering_bound > R.covering || R.covering_point < 0) R.covering = cell.covering_bound, R.covering_point = p;

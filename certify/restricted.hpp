@@ -87,6 +87,7 @@ struct RestrictedDelaunay {
   bool covering_certified = false;
   std::string reason;                       // why not, when not
   long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0, reach_slabs = 0;
+  long rational_chart_cells = 0;  // cells analysed in a rational chart (certify/detail/param_cell.hpp)
 };
 
 RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& system, const io::PointSet& points,

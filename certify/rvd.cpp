@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
+#include "certify/detail/cell_checks.hpp"
+#include "certify/detail/param_cell.hpp"
 #include "exact/chart.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
@@ -166,27 +169,11 @@ class CellAnalysis {
     }
   }
 
-  // Is every face C of K = {p} + S with p in C and |C| <= m a face of a vertex simplex or a face
-  // point found so far? (See PURITY in rvd.hpp; K has at most m + 1 points, m <= 3.) On failure
-  // `face` is the first such C, the larger faces first.
+  // PURITY (rvd.hpp), on the candidates' point indices (certify/detail/cell_checks.hpp).
   bool faces_known(const std::vector<int>& S, std::vector<int>& face) const {
-    const int n = static_cast<int>(S.size());
-    if (n > m_) return false;  // only resolved boxes are asked (n <= m); 1 << n stays small
-    for (int size = std::min(n, m_ - 1); size >= 0; --size)
-      for (int mask = (1 << n) - 1; mask >= 0; --mask) {
-        if (__builtin_popcount(mask) != size) continue;
-        std::vector<int> C{p_};
-        for (int i = 0; i < n; ++i)
-          if (mask >> i & 1) C.push_back(cands_[S[i]].index);
-        std::sort(C.begin(), C.end());
-        auto holds = [&](const auto& v) { return std::includes(v.simplex.begin(), v.simplex.end(), C.begin(), C.end()); };
-        if (std::none_of(report_.vertices.begin(), report_.vertices.end(), holds) &&
-            std::none_of(report_.face_points.begin(), report_.face_points.end(), holds)) {
-          face = std::move(C);
-          return false;
-        }
-      }
-    return true;
+    std::vector<int> idx;
+    for (int i : S) idx.push_back(cands_[i].index);
+    return detail::faces_known(p_, m_, idx, report_.vertices, report_.face_points, face);
   }
 
   // Interval hull of s_q over U x H.
@@ -707,29 +694,9 @@ class CellAnalysis {
     return true;
   }
 
-  // Direct check, independent of the graph assumption and of the candidate sets: every point of P
-  // outside `simplex` is strictly farther than p from every x in X. A point q with
-  // d(x, q) <= d(x, p) has |q - c| <= d(q, x) + d(x, c) <= d(x, p) + d(x, c) (c the centre of X),
-  // so grid.ball(c, sup |x - p| + sup |x - c|) holds every such q. Under upward rounding.
+  // Direct check (certify/detail/cell_checks.hpp): every other point strictly farther than p on X.
   bool separated(const std::vector<int>& simplex, const Box& X) const {
-    std::vector<double> c(N_);
-    IA dp(0), dc(0);
-    for (int v = 0; v < N_; ++v) {
-      c[v] = X[v].midpoint();
-      dp += exact::square(ia(X[v]) - IA(points_.point(p_)[v]));
-      dc += exact::square(ia(X[v]) - IA(c[v]));
-    }
-    const double R = (exact::sqrt(dp) + exact::sqrt(dc)).sup();
-    for (int q : grid_.ball(c, R)) {
-      if (std::binary_search(simplex.begin(), simplex.end(), q)) continue;
-      IA s(0);  // |q - p|^2 - 2 (x - p).(q - p) = d(x, q)^2 - d(x, p)^2
-      for (int v = 0; v < N_; ++v) {
-        const IA d = IA(points_.point(q)[v]) - IA(points_.point(p_)[v]);
-        s += exact::square(d) - IA(2) * (ia(X[v]) - IA(points_.point(p_)[v])) * d;
-      }
-      if (!(s.inf() > 0)) return false;
-    }
-    return true;
+    return detail::others_strictly_farther(points_, grid_, p_, simplex, X);
   }
 
   // Sort the vertices; a root on a face shared by two boxes is found twice: of overlapping
@@ -791,23 +758,27 @@ class CellAnalysis {
 }  // namespace
 
 struct RestrictedCell::Impl {
-  CellAnalysis cell;
+  std::unique_ptr<detail::ParamCell> param;  // a rational chart (detail/param_cell.hpp), when there is one
+  std::optional<CellAnalysis> cell;          // else the implicit chart
 };
 
 RestrictedCell::RestrictedCell(const exact::ImplicitSystem& system, const io::PointSet& points,
                                const detail::PointGrid& grid, int p, const RestrictedCellOptions& options)
-    : impl_(std::make_unique<Impl>(Impl{CellAnalysis(system, points, grid, p, options)})) {}
+    : impl_(std::make_unique<Impl>()) {
+  if (options.shape) impl_->param = detail::ParamCell::make(*options.shape, points, grid, p, options);
+  if (!impl_->param) impl_->cell.emplace(system, points, grid, p, options);
+}
 RestrictedCell::~RestrictedCell() = default;
 RestrictedCell::RestrictedCell(RestrictedCell&&) noexcept = default;
 RestrictedCell& RestrictedCell::operator=(RestrictedCell&&) noexcept = default;
-double RestrictedCell::first_pass() { return impl_->cell.first_pass(); }
+double RestrictedCell::first_pass() { return impl_->param ? impl_->param->first_pass() : impl_->cell->first_pass(); }
 RestrictedCellReport RestrictedCell::second_pass(double covering_target) {
-  return impl_->cell.second_pass(covering_target);
+  return impl_->param ? impl_->param->second_pass(covering_target) : impl_->cell->second_pass(covering_target);
 }
 
 RestrictedCellReport analyse_restricted_cell(const exact::ImplicitSystem& system, const io::PointSet& points,
                                              const detail::PointGrid& grid, int p, const RestrictedCellOptions& options) {
-  CellAnalysis cell(system, points, grid, p, options);
+  RestrictedCell cell(system, points, grid, p, options);
   cell.first_pass();
   return cell.second_pass(0);
 }

@@ -72,6 +72,7 @@
 #include "exact/interval.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/points.hpp"
+#include "io/spec.hpp"
 
 namespace delcert::certify {
 
@@ -96,6 +97,10 @@ struct RestrictedCellOptions {
   // the lemma's inequality holds. 0: nothing is assumed. selector: the s of M = {F = 0, s > 0}.
   double reach = 0;
   const exact::Polynomial* selector = nullptr;
+  // A shape verified by certify/intrinsic.hpp (verify_declared_shape): a round sphere (N = m + 1)
+  // or SO(3) is then analysed in a RATIONAL CHART (certify/detail/param_cell.hpp) wherever one
+  // covers M ∩ B(p, r); nothing is assumed (reach, selector unused there). nullptr: implicit charts.
+  const io::ShapeSpec* shape = nullptr;
 };
 
 struct RestrictedVoronoiVertex {
@@ -138,6 +143,7 @@ struct RestrictedCellReport {
   // Counters.
   long boxes = 0, kept = 0, discarded = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0;
   long reach_slabs = 0;  // chart slabs taken by the graph lemma (the reach assumption was used)
+  bool rational_chart = false;  // analysed in a rational chart (RestrictedCellOptions::shape)
   int max_depth = 0;
 };
 

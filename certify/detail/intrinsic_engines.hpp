@@ -3,6 +3,9 @@
 // candidates, complete/reason); compute_intrinsic_delaunay validates the candidates and dispatches.
 #pragma once
 
+#include <gmpxx.h>
+
+#include <array>
 #include <vector>
 
 #include "certify/intrinsic.hpp"
@@ -21,6 +24,14 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
                                                 int threads);
 
 // M = SO(3) in R^9 (x1..x9 row-major), the Frobenius metric (certify/intrinsic_so3.cpp).
+// Davenport's symmetric 4 x 4 matrix B(p), linear in p (3 x 3, row-major): <R(x), p> = x^T B(p) x
+// for every quaternion x, R(x) the rotation matrix of x times |x|^2 (quadratic in x). So
+// R(x)_ij = x^T B(E_ij) x, E_ij the matrix unit (certify/rvd_param.cpp builds its charts so).
+using Mat4 = std::array<std::array<mpq_class, 4>, 4>;
+Mat4 davenport(const std::array<mpq_class, 9>& p);
+// A floating-point unit eigenvector of B's largest eigenvalue (a guess: callers certify it).
+std::array<double, 4> top_eigenvector(const Mat4& B);
+
 IntrinsicDelaunay intrinsic_delaunay_so3(const io::PointSet& points, const PointGrid& grid,
                                          const std::vector<std::vector<int>>& candidates, int threads);
 

@@ -156,7 +156,12 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // a face's equidistance system with fixed chart axes and its argument, the assembly and check
   // 12's witnesses, ~110 lines net), the box-budget retry of nearly finished cells (~15) and the
   // per-star summary that keeps 1M points under 1.5 GB (issue 14, ~20) took it to 7589: 7610.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7610) << "certify/ should stay small enough to read whole";
+  // Rational charts (issue 11: certify/detail/param_cell.*, ~700 lines of which ~120 are the charts'
+  // proofs and identities and ~150 the quadratic enclosures and combined signs; certify/detail/
+  // cell_checks.* shares the vertex re-check and the purity test with rvd.cpp, ~40 net;
+  // verify_declared_shape shared by Del_M and Del_RM, ~20) took SO(3)'s Del_RM from about an hour
+  // to 3 s and the total to 8525: 8550.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8550) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

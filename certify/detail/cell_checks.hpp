@@ -1,0 +1,29 @@
+// Two checks shared by the restricted-cell engines (certify/rvd.cpp: implicit charts;
+// certify/detail/param_cell.cpp: rational charts). Neither depends on how the cell was searched.
+#pragma once
+
+#include <vector>
+
+#include "certify/detail/grid.hpp"
+#include "certify/rvd.hpp"
+#include "exact/interval.hpp"
+#include "io/points.hpp"
+
+namespace delcert::certify::detail {
+
+// Direct check, independent of any chart, graph assumption or candidate set: every point of P
+// outside `simplex` (sorted point indices, p among them) is strictly farther than p from every x
+// in X (N intervals). A point q with d(x, q) <= d(x, p) has |q - c| <= d(q, x) + d(x, c) <=
+// d(x, p) + d(x, c) (c the centre of X), so grid.ball(c, sup |x - p| + sup |x - c|) holds every
+// such q; each sign d(x, q)^2 - d(x, p)^2 = |q - p|^2 - 2 (x - p).(q - p) is enclosed in interval
+// arithmetic under upward rounding, from the exact doubles of the points.
+bool others_strictly_farther(const io::PointSet& points, const PointGrid& grid, int p, const std::vector<int>& simplex,
+                             const exact::Box& X);
+
+// PURITY (rvd.hpp): is every face C of K = {p} + S (S point indices other than p, |S| <= m) with p
+// in C and |C| <= m a face of a vertex simplex or of a face point found so far? On failure `face`
+// is the first such C (sorted), the larger faces first.
+bool faces_known(int p, int m, const std::vector<int>& S, const std::vector<RestrictedVoronoiVertex>& vertices,
+                 const std::vector<RestrictedVoronoiVertex>& face_points, std::vector<int>& face);
+
+}  // namespace delcert::certify::detail

@@ -1,0 +1,730 @@
+#include "certify/detail/param_cell.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <unordered_set>
+#include <stdexcept>
+#include <utility>
+
+#include "certify/detail/cell_checks.hpp"
+#include "certify/detail/intrinsic_engines.hpp"
+#include "exact/enclosed_polynomial.hpp"
+#include "exact/interval_arithmetic.hpp"
+#include "exact/krawczyk.hpp"
+#include "exact/linear_algebra.hpp"
+#include "exact/number_types.hpp"
+#include "exact/polynomial.hpp"
+#include "exact/small_vector.hpp"
+
+namespace delcert::certify::detail {
+
+namespace {
+
+using exact::Box;
+using exact::EnclosedPolynomial;
+using exact::Interval;
+using exact::Polynomial;
+using IA = exact::IntervalNumber;
+
+IA ia(const Interval& i) { return exact::to_interval_number(i); }
+
+// A double rounded to a multiple of 2^-30 (a short exact rational; only closeness matters).
+mpq_class dyadic(double x) {
+  mpq_class q(std::nearbyint(std::ldexp(x, 30)));
+  q /= mpq_class(mpz_class(1) << 30);
+  return q;
+}
+
+// t = s / sqrt(1 - s^2) rounded up from an upper bound r' of the distance (s = r' / scale); 0 when s >= 1.
+double half_width(const IA& r_prime, const IA& scale) {
+  exact::UpwardRounding up;
+  const IA s = r_prime / scale;
+  if (!(s.sup() < 1)) return 0;
+  const double t = (s / exact::sqrt(IA(1) - exact::square(s))).sup();
+  return std::isfinite(t) ? t : 0;
+}
+
+// sup |p - a| for a rational point a, enclosed from the exact doubles of p.
+IA distance_to(std::span<const double> p, const std::vector<mpq_class>& a) {
+  exact::UpwardRounding up;
+  IA d(0);
+  for (std::size_t i = 0; i < a.size(); ++i) d += exact::square(IA(p[i]) - ia(exact::enclose(a[i])));
+  return exact::sqrt(d);
+}
+
+Polynomial sum_of_squares(int m) {  // |v|^2
+  Polynomial s(m);
+  for (int a = 0; a < m; ++a) s = s + Polynomial::variable(a, m) * Polynomial::variable(a, m);
+  return s;
+}
+
+std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<const double> p, double r) {
+  const int N = static_cast<int>(g.center.size()), m = N - 1;
+  std::vector<double> u(N);
+  double len = 0;
+  for (int i = 0; i < N; ++i) u[i] = p[i] - g.center[i].get_d(), len = std::hypot(len, u[i]);
+  if (!(len > 0) || !std::isfinite(len)) return std::nullopt;
+  int k = 0;
+  for (int i = 0; i < N; ++i) {
+    u[i] /= len;
+    if (std::abs(u[i]) > std::abs(u[k])) k = i;
+  }
+  const int sk = u[k] < 0 ? -1 : 1;
+  // n: the inverse stereographic image (pole -sk e_k) of w_j = u_j / (1 + sk u_k), exactly unit.
+  std::vector<mpq_class> w(N, mpq_class(0)), n(N);
+  mpq_class W(0);
+  for (int j = 0; j < N; ++j)
+    if (j != k) w[j] = dyadic(u[j] / (1 + sk * u[k])), W += w[j] * w[j];
+  for (int j = 0; j < N; ++j) n[j] = j == k ? mpq_class(sk * (1 - W) / (1 + W)) : mpq_class(2 * w[j] / (1 + W));
+  // E: the columns j != l of H = I - 2 a a^T / |a|^2, a = n + sgn(n_l) e_l (|a|^2 >= 2), which
+  // sends -sgn(n_l) e_l to n: orthonormal, orthogonal to n.
+  int l = 0;
+  for (int j = 0; j < N; ++j)
+    if (abs(n[j]) > abs(n[l])) l = j;
+  std::vector<mpq_class> a = n;
+  a[l] += sgn(n[l]) < 0 ? -1 : 1;
+  mpq_class a2(0);
+  for (const auto& x : a) a2 += x * x;
+  const Polynomial v2 = sum_of_squares(m), one = Polynomial::constant(1, m);
+  RationalChart C;
+  C.D = one + v2;
+  for (int i = 0; i < N; ++i) {
+    Polynomial Xi = C.D.scaled(g.center[i]) + (one - v2).scaled(g.radius * n[i]);
+    for (int j = 0, col = 0; j < N; ++j) {
+      if (j == l) continue;
+      const mpq_class Eij = (i == j ? mpq_class(1) : mpq_class(0)) - 2 * a[i] * a[j] / a2;
+      Xi = Xi + Polynomial::variable(col++, m).scaled(2 * g.radius * Eij);
+    }
+    C.X.push_back(std::move(Xi));
+  }
+  // (a): |X - c D|^2 = rho^2 D^2.
+  Polynomial id = (C.D * C.D).scaled(-g.radius * g.radius);
+  for (int i = 0; i < N; ++i) {
+    const Polynomial d = C.X[i] - C.D.scaled(g.center[i]);
+    id = id + d * d;
+  }
+  if (!id.is_zero()) throw std::logic_error("restricted cell: the sphere's rational chart fails its identity");
+  std::vector<mpq_class> apex(N);
+  for (int i = 0; i < N; ++i) apex[i] = g.center[i] + g.radius * n[i];
+  exact::UpwardRounding up;
+  C.t = half_width(IA(r) + distance_to(p, apex), IA(2) * ia(exact::enclose(g.radius)));
+  if (!(C.t > 0)) return std::nullopt;
+  return C;
+}
+
+// B(E_ij) for the nine matrix units: R(y)_ij = y^T B(E_ij) y.
+const std::array<Mat4, 9>& davenport_units() {
+  static const std::array<Mat4, 9> units = [] {
+    std::array<Mat4, 9> u;
+    for (int ij = 0; ij < 9; ++ij) {
+      std::array<mpq_class, 9> unit{};
+      unit[ij] = 1;
+      u[ij] = davenport(unit);
+    }
+    return u;
+  }();
+  return units;
+}
+
+// R(y) R(y)^T = |y|^4 I for the quaternion y = (y1..y4) as exact polynomials in 4 variables
+// (the rotation of y times |y|^2 is |y|^2 times an orthogonal matrix); checked once per process.
+bool quaternion_identity() {
+  static const bool holds = [] {
+    std::array<Polynomial, 9> R;
+    Polynomial n2(4);
+    for (int s = 0; s < 4; ++s) n2 = n2 + Polynomial::variable(s, 4) * Polynomial::variable(s, 4);
+    for (int ij = 0; ij < 9; ++ij) {
+      R[ij] = Polynomial(4);
+      for (int s = 0; s < 4; ++s)
+        for (int t = 0; t < 4; ++t)
+          if (davenport_units()[ij][s][t] != 0)
+            R[ij] = R[ij] + (Polynomial::variable(s, 4) * Polynomial::variable(t, 4)).scaled(davenport_units()[ij][s][t]);
+    }
+    const Polynomial n4 = n2 * n2;
+    for (int i = 0; i < 3; ++i)
+      for (int k = i; k < 3; ++k) {
+        const Polynomial dot = R[3 * i] * R[3 * k] + R[3 * i + 1] * R[3 * k + 1] + R[3 * i + 2] * R[3 * k + 2];
+        if (!(i == k ? dot - n4 : dot).is_zero()) return false;
+      }
+    return true;
+  }();
+  return holds;
+}
+
+std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
+  std::array<mpq_class, 9> pq;
+  for (int i = 0; i < 9; ++i) {
+    if (!std::isfinite(p[i])) return std::nullopt;
+    pq[i] = p[i];
+  }
+  const std::array<double, 4> e = top_eigenvector(davenport(pq));
+  std::array<mpq_class, 4> y;  // integers (|y| about 1024): any nonzero y~ is correct, small ones are fast
+  for (int i = 0; i < 4; ++i) y[i] = std::nearbyint(1024 * e[i]);
+  const mpq_class y2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3];
+  if (y2 == 0) return std::nullopt;
+  const mpq_class &a = y[0], &b = y[1], &c = y[2], &d = y[3];
+  const std::array<std::array<mpq_class, 4>, 3> E{{{-b, a, -d, c}, {-c, d, a, -b}, {-d, -c, b, a}}};
+  // (a) in two exact steps. (1) Once: R(y) R(y)^T = |y|^4 I as polynomials in y (quaternion_identity).
+  // (2) Per chart: y~, e1, e2, e3 pairwise orthogonal with |e_k|^2 = |y~|^2, so that
+  // |y~ + E v|^2 = |y~|^2 (1 + |v|^2) = D(v). Then X = R(y~ + E v) has X X^T = D^2 I: X / D is
+  // orthogonal, and its determinant, continuous on the connected R^3 with values +-1, is its value
+  // at v = 0 (det R(y~) / |y~|^6, checked > 0 below): phi(v) is in SO(3).
+  if (!quaternion_identity()) throw std::logic_error("restricted cell: R(y) R(y)^T != |y|^4 I");
+  for (int k = 0; k < 3; ++k) {
+    mpq_class dy(0);
+    for (int i = 0; i < 4; ++i) dy += y[i] * E[k][i];
+    if (dy != 0) throw std::logic_error("restricted cell: the SO(3) chart's basis is not orthogonal to y~");
+    for (int l = 0; l < 3; ++l) {
+      mpq_class dk(0);
+      for (int i = 0; i < 4; ++i) dk += E[k][i] * E[l][i];
+      if (dk != (k == l ? y2 : mpq_class(0))) throw std::logic_error("restricted cell: the SO(3) chart's basis is not orthogonal");
+    }
+  }
+  const int m = 3;
+  std::array<Polynomial, 4> Y;  // y~ + E v
+  for (int i = 0; i < 4; ++i) {
+    Y[i] = Polynomial::constant(y[i], m);
+    for (int k = 0; k < 3; ++k) Y[i] = Y[i] + Polynomial::variable(k, m).scaled(E[k][i]);
+  }
+  RationalChart C;
+  C.D = (Polynomial::constant(1, m) + sum_of_squares(m)).scaled(y2);
+  std::array<std::array<Polynomial, 4>, 4> YY;  // Y_s Y_t, s <= t
+  for (int s = 0; s < 4; ++s)
+    for (int t = s; t < 4; ++t) YY[s][t] = Y[s] * Y[t];
+  for (int ij = 0; ij < 9; ++ij) {
+    const Mat4& B = davenport_units()[ij];
+    Polynomial Xij(m);
+    for (int s = 0; s < 4; ++s)
+      for (int t = s; t < 4; ++t)
+        if (const mpq_class w = s == t ? B[s][s] : B[s][t] + B[t][s]; w != 0) Xij = Xij + YY[s][t].scaled(w);
+    C.X.push_back(std::move(Xij));
+  }
+  std::vector<mpq_class> p0(9);  // phi(0) = R(y~) / |y~|^2
+  for (int ij = 0; ij < 9; ++ij) {
+    const auto& t0 = C.X[ij].terms();
+    mpq_class c0(0);
+    for (const auto& t : t0)
+      if (std::all_of(t.monomial.exponents.begin(), t.monomial.exponents.end(), [](auto e) { return e == 0; }))
+        c0 = t.coefficient;
+    p0[ij] = c0 / y2;
+  }
+  const mpq_class det0 = p0[0] * (p0[4] * p0[8] - p0[5] * p0[7]) - p0[1] * (p0[3] * p0[8] - p0[5] * p0[6]) +
+                         p0[2] * (p0[3] * p0[7] - p0[4] * p0[6]);
+  if (sgn(det0) <= 0) throw std::logic_error("restricted cell: the SO(3) rational chart has det != 1");
+  exact::UpwardRounding up;
+  C.t = half_width(IA(r) + distance_to(p, p0), exact::sqrt(IA(8)));
+  if (!(C.t > 0)) return std::nullopt;
+  return C;
+}
+
+// A polynomial of degree <= 2 in m <= 3 variables (every chart here: X, D and so each P_q are
+// quadratic), known by coefficient enclosures: P(v) = a + sum_i b_i v_i + sum_i G_i v_i^2 +
+// sum_{i<j} C_ij v_i v_j. Over a box V with centre c (doubles) and v = c + w, w in W = V - c:
+//   P(c + w) = P(c) + sum_i g_i w_i + sum_i G_i w_i^2 + sum_{i<j} C_ij w_i w_j,
+//   g_i = dP/dv_i (c) = b_i + 2 G_i c_i + sum_{j != i} C_ij c_j,
+// an identity (Taylor at c is exact at degree 2), so enclosing each term of the right side over W
+// (w_i^2 by exact::square: tight at 0) encloses the range of P on V for every polynomial the
+// enclosures stand for. Second order exact: much tighter than the natural extension on wide boxes.
+struct Quadratic {
+  IA a{0};
+  std::array<IA, 3> b{IA(0), IA(0), IA(0)}, G{IA(0), IA(0), IA(0)}, C{IA(0), IA(0), IA(0)};  // C: (0,1), (0,2), (1,2)
+  int m = 0;
+  static constexpr int pair[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  Quadratic() = default;
+  explicit Quadratic(const EnclosedPolynomial& P) : m(P.num_variables()) {
+    if (m > 3) throw std::logic_error("restricted cell: a rational chart has more than 3 parameters");
+    for (std::size_t t = 0; t < P.size(); ++t) {
+      const auto e = P.exponents(t);
+      int deg = 0, first = -1, second = -1;
+      for (int i = 0; i < m; ++i) {
+        deg += static_cast<int>(e[i]);
+        for (std::uint32_t k = 0; k < e[i]; ++k) (first < 0 ? first : second) = i;
+      }
+      const IA c = ia(P.coefficient(t));
+      if (deg == 0) a = c;
+      else if (deg == 1) b[first] = c;
+      else if (deg == 2 && first == second) G[first] = c;
+      else if (deg == 2) C[first + second - 1] = c;  // (0,1) -> 0, (0,2) -> 1, (1,2) -> 2
+      else throw std::logic_error("restricted cell: a rational chart is not quadratic");
+    }
+  }
+  // The range over the box c + W (c: the centre, point intervals). Under upward rounding.
+  IA range(const IA* c, const IA* W) const {
+    IA v = a;
+    for (int i = 0; i < m; ++i) v += (b[i] + G[i] * c[i]) * c[i];
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m) v += C[k] * c[pair[k][0]] * c[pair[k][1]];
+    for (int i = 0; i < m; ++i) {
+      IA g = b[i] + IA(2) * G[i] * c[i];
+      for (int k = 0; k < 3; ++k)
+        if (pair[k][1] < m && (pair[k][0] == i || pair[k][1] == i)) g += C[k] * c[pair[k][0] == i ? pair[k][1] : pair[k][0]];
+      v += g * W[i] + G[i] * exact::square(W[i]);
+    }
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m) v += C[k] * (W[pair[k][0]] * W[pair[k][1]]);
+    return v;
+  }
+  // This + t B (interval coefficients). Under upward rounding.
+  void add(const Quadratic& B, const IA& T) {
+    a += T * B.a;
+    for (int i = 0; i < 3; ++i) b[i] += T * B.b[i], G[i] += T * B.G[i], C[i] += T * B.C[i];
+  }
+  // dP/dv_i at the centre, in double from the lower ends (a guess for choosing combinations).
+  double slope(int i, const double* c) const {
+    double g = b[i].inf() + 2 * G[i].inf() * c[i];
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m && (pair[k][0] == i || pair[k][1] == i)) g += C[k].inf() * c[pair[k][0] == i ? pair[k][1] : pair[k][0]];
+    return g;
+  }
+  // The natural extension over the box c + W, intersected with range(): the denominators
+  // D = k (1 + |v|^2) are then enclosed by intervals >= k > 0 on every box.
+  IA tight_range(const IA* c, const IA* W) const {
+    IA v = a;
+    std::array<IA, 3> V;
+    for (int i = 0; i < m; ++i) V[i] = c[i] + W[i], v += b[i] * V[i] + G[i] * exact::square(V[i]);
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m) v += C[k] * (V[pair[k][0]] * V[pair[k][1]]);
+    const IA t = range(c, W);
+    const double lo = std::max(v.inf(), t.inf()), hi = std::min(v.sup(), t.sup());
+    return lo <= hi ? IA(lo, hi) : v;  // (both hold the range: disjoint only through a NaN)
+  }
+};
+
+// A box V as its centre c (point intervals of the midpoints) and W = V - c, enclosed.
+struct Centred {
+  std::array<IA, 3> c, W;
+  explicit Centred(const Box& V) {
+    exact::UpwardRounding up;
+    for (std::size_t i = 0; i < V.size(); ++i) {
+      const double mid = V[i].midpoint();
+      c[i] = IA(mid);
+      W[i] = IA((IA(V[i].lo) - c[i]).inf(), (IA(V[i].hi) - c[i]).sup());
+    }
+  }
+};
+
+struct Work {
+  Box V;
+  exact::SmallVector<int, 16> S;  // positions in cands_ of the candidates other than p
+  // Dropped from S by COMBINED SIGNS (strictly farther than p on Vor(p) in the box, not on all of
+  // it): kept to discard sub-boxes where they are certainly closer, as in rvd.cpp.
+  exact::SmallVector<int, 16> far;
+  int depth = 0;
+  bool vertex_decided = false;  // as rvd.cpp: Krawczyk decided this box or an ancestor with |S| = m
+};
+
+class Analysis final : public ParamCell {
+ public:
+  Analysis(RationalChart chart, const io::PointSet& points, const PointGrid& grid, int p, const RestrictedCellOptions& o)
+      : points_(points), grid_(grid), p_(p), opt_(o), N_(static_cast<int>(chart.X.size())),
+        m_(chart.D.num_variables()), t_(chart.t) {
+    const EnclosedPolynomial D = EnclosedPolynomial::from_exact(chart.D);
+    D_ = Quadratic(D);
+    report_.graph_radius = r_ = o.graph_radius;
+    report_.rational_chart = true;
+    const auto pp = points.point(p);
+    exact::UpwardRounding up;
+    r2_ = IA(r_) * IA(r_);
+    // Y_i = X_i - p_i D: phi(v) - p = Y(v) / D(v).
+    D_enc_ = D;
+    for (int i = 0; i < N_; ++i) {
+      Y_enc_.push_back(EnclosedPolynomial::from_exact(chart.X[i]) + D.scaled(Interval::point(-pp[i])));
+      Y_.emplace_back(Y_enc_.back());
+    }
+    for (int q : grid.ball(pp, 2 * r_)) {  // every point of the closed ball B(p, 2r) (rvd.hpp)
+      if (q == p) continue;
+      // P_q = |q - p|^2 D - 2 (q - p).Y, its coefficients enclosed from those of D and Y.
+      IA c(0);
+      Quadratic P = D_;
+      for (int i = 0; i < N_; ++i) {
+        const IA d = IA(points.point(q)[i]) - IA(pp[i]);
+        c += exact::square(d);
+      }
+      P.a *= c;
+      for (int i = 0; i < 3; ++i) P.b[i] *= c, P.G[i] *= c, P.C[i] *= c;
+      for (int i = 0; i < N_; ++i) P.add(Y_[i], IA(-2) * (IA(points.point(q)[i]) - IA(pp[i])));
+      index_.push_back(q);
+      cands_.push_back(P);
+    }
+  }
+
+  // P_q as an EnclosedPolynomial (Krawczyk's rows), from the same enclosures of D and Y.
+  EnclosedPolynomial polynomial(int i) const {
+    exact::UpwardRounding up;
+    const auto pp = points_.point(p_), qq = points_.point(index_[i]);
+    IA c(0);
+    std::vector<EnclosedPolynomial> terms;
+    for (int v = 0; v < N_; ++v) {
+      const IA d = IA(qq[v]) - IA(pp[v]);
+      c += exact::square(d);
+      terms.push_back(Y_enc_[v].scaled(exact::to_interval(IA(-2) * d)));
+    }
+    terms.push_back(D_enc_.scaled(exact::to_interval(c)));
+    return EnclosedPolynomial::sum(terms, m_);
+  }
+
+  double first_pass() override {
+    report_.point = p_;
+    Work root;
+    root.V.assign(m_, Interval{-t_, t_});
+    for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
+    subdivide({root});
+    exact::UpwardRounding up;
+    for (const auto& v : report_.vertices) {
+      IA d(0);
+      for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
+      refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
+    }
+    return refine_below_;
+  }
+
+  RestrictedCellReport second_pass(double covering_target) override {
+    refining_ = true;
+    refine_below_ = std::max(refine_below_, covering_target);
+    std::reverse(pending_.begin(), pending_.end());
+    subdivide(std::move(pending_));
+    finish();
+    return std::move(report_);
+  }
+
+ private:
+  void subdivide(std::vector<Work> stack) {
+    while (!stack.empty()) {
+      Work w = std::move(stack.back());
+      stack.pop_back();
+      if (report_.boxes >= opt_.max_boxes) {
+        undecided(w.V, w.S, "box budget exhausted");
+        continue;
+      }
+      visit(std::move(w), stack);
+    }
+  }
+
+  // The enclosure of phi over V (N intervals) and of |phi - p|^2.
+  void image(const Box& V, Box* X, IA* d2) const {
+    const Centred B(V);
+    exact::UpwardRounding up;
+    const IA D = D_.tight_range(B.c.data(), B.W.data());  // >= k > 0
+    const auto pp = points_.point(p_);
+    IA s(0);
+    if (X) X->resize(N_);
+    for (int i = 0; i < N_; ++i) {
+      const IA y = Y_[i].range(B.c.data(), B.W.data()) / D;
+      s += exact::square(y);
+      if (X) (*X)[i] = exact::to_interval(IA(pp[i]) + y);
+    }
+    if (d2) *d2 = s;
+  }
+  void undecided(const Box& V, std::span<const int> S, std::string reason) {
+    Box X;
+    image(V, &X, nullptr);
+    std::vector<double> loc;
+    for (const auto& i : X) loc.push_back(i.midpoint());
+    report_.undecided.push_back({std::move(loc), simplex_of(S), std::move(reason)});
+  }
+  std::vector<int> simplex_of(std::span<const int> S) const {
+    std::vector<int> s{p_};
+    for (int i : S) s.push_back(index_[i]);
+    std::sort(s.begin(), s.end());
+    return s;
+  }
+
+  void visit(Work w, std::vector<Work>& stack) {
+    ++report_.boxes;
+    report_.max_depth = std::max(report_.max_depth, w.depth);
+    exact::UpwardRounding up;
+    IA d2;
+    image(w.V, nullptr, &d2);
+    if (d2.inf() >= r2_.sup()) return discard();  // |phi - p| >= r on V: outside the open ball
+    // A candidate certainly closer than p on all of phi(V) leaves no point of Vor(p) there; one
+    // certainly farther can neither bound the cell in V nor exclude any part of it: dropped.
+    const Centred B(w.V);
+    for (auto* list : {&w.S, &w.far}) {
+      std::size_t out = 0;
+      for (int i : *list) {
+        const IA s = cands_[i].range(B.c.data(), B.W.data());
+        if (s.sup() < 0) return discard();
+        if (!(s.inf() > 0)) (*list)[out++] = i;
+      }
+      list->resize(out);
+    }
+    const int all = static_cast<int>(w.S.size() + w.far.size());
+    if (all >= 2 && all <= opt_.combined_signs_max && (refining_ || static_cast<int>(w.S.size()) >= m_) &&
+        combined_signs(w, B))
+      return discard();
+    const int n = static_cast<int>(w.S.size()) + 1;
+    bool resolved = n <= m_;  // a vertex needs m + 1 nearest points, all in {p} + S
+    if (n == m_ + 1) resolved = w.vertex_decided || krawczyk_vertex(w);
+    w.vertex_decided = resolved && n == m_ + 1;
+    double widest = 0;
+    for (const auto& i : w.V) widest = std::max(widest, i.width());
+    const double raw_bound = exact::sqrt(d2).sup();
+    const double bound = std::isnan(raw_bound) ? INFINITY : raw_bound;
+    const bool fine = (n == 1 && w.far.empty()) || widest <= opt_.covering_width * t_ || w.depth >= opt_.max_depth ||
+                      (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
+    if (resolved && !refining_ && (!fine || n >= 2)) {  // waits for the second pass (rvd.cpp)
+      pending_.push_back(std::move(w));
+      return;
+    }
+    std::vector<int> face;
+    const bool faces_ok = !resolved || n == 1 || known_faces(w.S, face);
+    const bool purity_floor = widest <= opt_.purity_width * t_;
+    if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
+      if (bound > report_.covering_bound || report_.covering_location.empty()) {
+        Box X;
+        image(w.V, &X, nullptr);
+        report_.covering_bound = bound;
+        report_.covering_location.clear();
+        for (const auto& i : X) report_.covering_location.push_back(i.midpoint());
+      }
+      if (!faces_ok && std::none_of(report_.unresolved_faces.begin(), report_.unresolved_faces.end(),
+                                    [&](const UndecidedBox& b) { return b.candidates == face; })) {
+        Box X;
+        image(w.V, &X, nullptr);
+        std::vector<double> loc;
+        for (const auto& i : X) loc.push_back(i.midpoint());
+        report_.unresolved_faces.push_back({std::move(loc), std::move(face),
+                                            "a face of the candidate set that is in no restricted Voronoi vertex's "
+                                            "simplex, still possible in a box of the finest purity width"});
+      }
+      ++report_.kept;
+      return;
+    }
+    if (w.depth >= opt_.max_depth) {
+      undecided(w.V, w.S, n > m_ + 1 ? "more than m + 1 candidates at the depth limit" : "Krawczyk undecided at the depth limit");
+      return;
+    }
+    for (int corner = (1 << m_) - 1; corner >= 0; --corner) {
+      Work ch;
+      ch.V = w.V;
+      for (int a = 0; a < m_; ++a) {
+        const double mid = w.V[a].midpoint();
+        ch.V[a] = (corner >> a) & 1 ? Interval{mid, w.V[a].hi} : Interval{w.V[a].lo, mid};
+      }
+      ch.S = corner ? w.S : std::move(w.S);
+      ch.far = corner ? w.far : std::move(w.far);
+      ch.depth = w.depth + 1;
+      ch.vertex_decided = w.vertex_decided;
+      stack.push_back(std::move(ch));
+    }
+  }
+  void discard() { ++report_.discarded; }
+
+  // PURITY (cell_checks.hpp) for a resolved box's S, remembered once true (the vertices found only
+  // grow, so a known face stays known): the key is S itself, at most 4 positions of 16 bits.
+  bool known_faces(std::span<const int> S, std::vector<int>& face) {
+    const bool cacheable = S.size() <= 4 && cands_.size() < 0xFFFF;
+    std::uint64_t key = 0;
+    for (int i : S) key = key << 16 | static_cast<std::uint64_t>(i + 1);
+    if (cacheable && faces_known_.count(key)) return true;
+    std::vector<int> idx;
+    for (int i : S) idx.push_back(index_[i]);
+    if (!faces_known(p_, m_, idx, report_.vertices, report_.face_points, face)) return false;
+    if (cacheable) faces_known_.insert(key);
+    return true;
+  }
+
+  // COMBINED SIGNS (rvd.cpp's argument, unchanged: R = the points of phi(V) where every P_q of S
+  // and `far` is >= 0 holds every point of Vor(p) there, D > 0). With t_i >= 0: P_A + sum t_i P_Bi
+  // < 0 on V empties R (true: discard); P_A - sum t_i P_Bi > 0 on V (A in S) makes A strictly
+  // farther than p on R: A moves to `far`. The t_i are chosen in double (pairs: where one slope of
+  // the combination vanishes at the centre; m of them, near a vertex: all slopes), and only the
+  // enclosure of the combination, with those exact doubles, decides.
+  bool combined_signs(Work& w, const Centred& B) const {
+    int n = static_cast<int>(w.S.size());
+    const int all = n + static_cast<int>(w.far.size());
+    auto at = [&](int i) -> const Quadratic& { return cands_[i < n ? w.S[i] : w.far[i - n]]; };
+    double c[3], h[3];
+    for (int a = 0; a < m_; ++a) c[a] = B.c[a].inf(), h[a] = std::max(-B.W[a].inf(), B.W[a].sup());
+    // Each candidate near the centre, in double from the lower ends of its coefficients: value,
+    // slopes and second-order coefficients (only to choose t and skip hopeless combinations).
+    struct Local {
+      double f, g[3], G[3], C[3];
+    };
+    if (all > kMaxCombined) return false;
+    Local L[kMaxCombined];
+    for (int i = 0; i < all; ++i) {
+      const Quadratic& Q = at(i);
+      Local& l = L[i];
+      l.f = Q.a.inf();
+      for (int a = 0; a < m_; ++a) l.f += (Q.b[a].inf() + Q.G[a].inf() * c[a]) * c[a], l.g[a] = Q.slope(a, c), l.G[a] = Q.G[a].inf();
+      for (int k = 0; k < 3; ++k)
+        if (Quadratic::pair[k][1] < m_) l.f += Q.C[k].inf() * c[Quadratic::pair[k][0]] * c[Quadratic::pair[k][1]];
+      for (int k = 0; k < 3; ++k) l.C[k] = Q.C[k].inf();
+    }
+    // sign * (the extreme of L_A + sum t_i L_Bi towards -sign) over the box, approximately.
+    auto approx = [&](int A, int j, const int* Bs, const double* t, double sign) {
+      double f = L[A].f, q = 0;
+      for (int a = 0; a < m_; ++a) {
+        double g = L[A].g[a], G = L[A].G[a];
+        for (int i = 0; i < j; ++i) g += t[i] * L[Bs[i]].g[a], G += t[i] * L[Bs[i]].G[a];
+        q -= std::abs(g) * h[a] + (sign > 0 ? std::max(-G, 0.0) : std::max(G, 0.0)) * h[a] * h[a];
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (Quadratic::pair[k][1] >= m_) continue;
+        double C = L[A].C[k];
+        for (int i = 0; i < j; ++i) C += t[i] * L[Bs[i]].C[k];
+        q -= std::abs(C) * h[Quadratic::pair[k][0]] * h[Quadratic::pair[k][1]];
+      }
+      for (int i = 0; i < j; ++i) f += t[i] * L[Bs[i]].f;
+      return sign * f + q;  // > 0: the combination looks decided
+    };
+    auto range_of = [&](int A, int j, const int* Bs, const double* t) {
+      Quadratic Q = at(A);
+      for (int i = 0; i < j; ++i) Q.add(at(Bs[i]), IA(t[i]));
+      return Q.range(B.c.data(), B.W.data());
+    };
+    // sign -1: sup (P_A + t P_B) < 0 for some t > 0?  sign +1: inf (P_A - t P_B) > 0?
+    auto decides = [&](int A, int Bi, double sign) {
+      double best = 0, best_v = 0;
+      for (int a = 0; a < m_; ++a) {
+        const double t = sign * L[A].g[a] / L[Bi].g[a], st = -sign * t;
+        if (!(t > 0) || !std::isfinite(t)) continue;
+        const double v = approx(A, 1, &Bi, &st, sign);
+        if (v > best_v) best_v = v, best = st;
+      }
+      if (best == 0) return false;
+      const IA f = range_of(A, 1, &Bi, &best);
+      return sign > 0 ? f.inf() > 0 : f.sup() < 0;
+    };
+    for (int i = 0; i < all; ++i)
+      for (int j = i + 1; j < all; ++j)
+        if (decides(i, j, -1)) return true;
+    char drop[kMaxCombined] = {};
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < all && !drop[i]; ++j) drop[i] = j != i && decides(i, j, 1);
+    if (n > m_)  // near a vertex: A against m others, the slopes matched at the centre
+      for (int A = 0; A < n; ++A)
+        for (int mask = 0, tried = 0; mask < (1 << (all - 1)) && tried < 8 && !drop[A]; ++mask) {
+          if (__builtin_popcount(mask) != m_) continue;
+          ++tried;
+          int Bs[3];
+          double M[9], rhs[3], t[3];
+          for (int o = 0, i = 0; i < m_; ++o)
+            if (mask >> o & 1) Bs[i++] = o < A ? o : o + 1;
+          for (int r = 0; r < m_; ++r) {
+            for (int i = 0; i < m_; ++i) M[r * m_ + i] = L[Bs[i]].g[r];
+            rhs[r] = L[A].g[r];
+          }
+          const double det = exact::determinant(M, m_);
+          if (!(std::abs(det) > 0) || !std::isfinite(det)) continue;
+          exact::cramer_solve(M, rhs, det, m_, t);
+          bool pos = true, neg = true;
+          for (int i = 0; i < m_; ++i) {
+            pos &= t[i] >= 0, neg &= t[i] <= 0;
+            if (!std::isfinite(t[i])) pos = neg = false;
+            t[i] = -t[i];  // P_A - sum t_i P_Bi has no slope at the centre
+          }
+          if (neg && approx(A, m_, Bs, t, -1) > 0 && range_of(A, m_, Bs, t).sup() < 0) return true;
+          if (pos && approx(A, m_, Bs, t, 1) > 0 && range_of(A, m_, Bs, t).inf() > 0) drop[A] = 1;
+        }
+    exact::SmallVector<int, 16> kept;
+    for (int i = 0; i < n; ++i) (drop[i] ? w.far : kept).push_back(w.S[i]);
+    w.S = std::move(kept);
+    return false;
+  }
+
+  // Krawczyk on {P_q = 0 : q in S} in V (|S| = m). True when decided: the vertex of {p} + S in V
+  // recorded (unique root, image enclosed, every other point strictly farther), or none in V.
+  // A root proven unique in a tight box around V (rvd.cpp: a vertex on a split plane) decides too.
+  bool krawczyk_vertex(const Work& w) {
+    const std::vector<int> simplex = simplex_of(w.S);
+    auto it = systems_.find(simplex);
+    if (it == systems_.end()) {
+      std::vector<EnclosedPolynomial> rows;
+      for (int i : w.S) rows.push_back(polynomial(i));
+      it = systems_.emplace(simplex, exact::ParametricSystem::from_enclosures(std::move(rows), 0)).first;
+    }
+    ++report_.krawczyk_calls;
+    for (const auto& i : w.V)
+      if (!i.is_finite()) return ++report_.krawczyk_failures, false;
+    const exact::KrawczykResult kr = exact::krawczyk(it->second, Box{}, w.V);
+    bool nearby = kr.status == exact::RootStatus::undecided && kr.nearby_root;
+    for (std::size_t i = 0; nearby && i < w.V.size(); ++i) nearby = (*kr.nearby_root)[i].width() <= w.V[i].width() / 8;
+    if (kr.status == exact::RootStatus::undecided && !nearby) {
+      ++report_.krawczyk_failures;
+      return false;
+    }
+    if (kr.status != exact::RootStatus::no_root) {
+      Box X;
+      image(kr.nearby_root ? *kr.nearby_root : kr.box, &X, nullptr);
+      if (!others_strictly_farther(points_, grid_, p_, simplex, X)) return false;
+      report_.vertices.push_back({simplex, std::move(X)});
+    }
+    return true;
+  }
+
+  // As rvd.cpp's finish(): sorted vertices, overlapping enclosures of one simplex kept once.
+  void finish() {
+    auto& V = report_.vertices;
+    std::sort(V.begin(), V.end(), [](const auto& x, const auto& y) {
+      if (x.simplex != y.simplex) return x.simplex < y.simplex;
+      for (std::size_t i = 0; i < x.x.size(); ++i)
+        if (x.x[i].lo != y.x[i].lo) return x.x[i].lo < y.x[i].lo;
+      return false;
+    });
+    std::vector<RestrictedVoronoiVertex> out;
+    for (auto& v : V) {
+      auto same = [&](const RestrictedVoronoiVertex& o) {
+        for (std::size_t i = 0; i < v.x.size(); ++i)
+          if (o.x[i].hi < v.x[i].lo || v.x[i].hi < o.x[i].lo) return false;
+        return o.simplex == v.simplex;
+      };
+      if (std::none_of(out.begin(), out.end(), same)) out.push_back(std::move(v));
+    }
+    V = std::move(out);
+    if (V.empty() && report_.kept > 0)
+      report_.unresolved_faces.push_back({report_.covering_location, {p_},
+                                          "the cell of p may hold points of M but has no restricted Voronoi vertex"});
+    if (!report_.undecided.empty())
+      report_.reason = std::to_string(report_.undecided.size()) + " undecided boxes";
+    else if (!(report_.covering_bound < r_))
+      report_.reason = "cell reaches the chart boundary";
+    report_.complete = report_.reason.empty();
+  }
+
+  const io::PointSet& points_;
+  const PointGrid& grid_;
+  int p_;
+  RestrictedCellOptions opt_;
+  int N_, m_;
+  double t_, r_ = 0;
+  IA r2_;
+  Quadratic D_;
+  std::vector<Quadratic> Y_;                // X_i - p_i D
+  std::vector<Quadratic> cands_;            // P_q
+  EnclosedPolynomial D_enc_;                // D and Y, for Krawczyk's rows (polynomial())
+  std::vector<EnclosedPolynomial> Y_enc_;
+  static constexpr int kMaxCombined = 16;
+  std::unordered_set<std::uint64_t> faces_known_;  // candidate sets (known_faces' keys) whose faces are known   // COMBINED SIGNS on at most this many candidates
+  std::vector<int> index_;        // cands_[i] is P_{index_[i]}
+  std::map<std::vector<int>, exact::ParametricSystem> systems_;
+  bool refining_ = false;
+  double refine_below_ = 0;
+  std::vector<Work> pending_;
+  RestrictedCellReport report_;
+};
+
+}  // namespace
+
+std::optional<RationalChart> rational_chart(const io::ShapeSpec& shape, std::span<const double> p, double r) {
+  const int N = static_cast<int>(p.size());
+  if (shape.kind == io::ShapeSpec::Kind::sphere && N == static_cast<int>(shape.center.size()) && (N == 3 || N == 4))
+    return sphere_chart(shape, p, r);
+  if (shape.kind == io::ShapeSpec::Kind::so3 && N == 9) return so3_chart(p, r);
+  return std::nullopt;
+}
+
+std::unique_ptr<ParamCell> ParamCell::make(const io::ShapeSpec& shape, const io::PointSet& points, const PointGrid& grid,
+                                           int p, const RestrictedCellOptions& options) {
+  if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
+  std::optional<RationalChart> chart = rational_chart(shape, points.point(p), options.graph_radius);
+  if (!chart) return nullptr;
+  return std::make_unique<Analysis>(std::move(*chart), points, grid, p, options);
+}
+
+}  // namespace delcert::certify::detail

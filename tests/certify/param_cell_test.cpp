@@ -1,0 +1,303 @@
+// certify/detail/param_cell.cpp: restricted Voronoi cells in rational charts (round spheres and
+// SO(3)). The charts' covering lemma is tested against points of M found independently (Gauss-
+// Newton on the chart's own polynomials), the engine against the implicit one (spheres) and
+// against the independent Del_M of the quaternion hull (SO(3)), with the witnesses re-checked in
+// long double, and exact ties are never certified.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include "certify/certify.hpp"
+#include "certify/detail/param_cell.hpp"
+#include "certify/intrinsic.hpp"
+#include "certify/restricted.hpp"
+#include "exact/chart.hpp"
+#include "io/complex.hpp"
+#include "io/points.hpp"
+#include "io/spec.hpp"
+#include "support.hpp"
+
+namespace delcert::certify::test {
+namespace {
+
+io::ShapeSpec verified(const io::ManifoldSpec& spec) {
+  const VerifiedShape V = verify_declared_shape(spec);
+  if (!V.shape) throw std::logic_error("the built-in's metric is not verified: " + V.reason);
+  return *V.shape;
+}
+
+std::set<std::vector<int>> simplex_set(const RestrictedDelaunay& R) {
+  std::set<std::vector<int>> s;
+  for (const auto& x : R.simplices) s.insert(x.simplex);
+  return s;
+}
+
+// phi(v) and its Jacobian in double, from the chart's own polynomials.
+struct ChartEval {
+  const detail::RationalChart& C;
+  double eval(const exact::Polynomial& P, const Eigen::Vector3d& v, int m) const {
+    std::vector<double> x(v.data(), v.data() + m);
+    return P.evaluate_with<double>(std::span<const double>(x), [&](std::size_t i) { return P.terms()[i].coefficient.get_d(); });
+  }
+  Eigen::VectorXd phi(const Eigen::Vector3d& v, int m) const {
+    Eigen::VectorXd x(C.X.size());
+    const double D = eval(C.D, v, m);
+    for (std::size_t i = 0; i < C.X.size(); ++i) x[i] = eval(C.X[i], v, m) / D;
+    return x;
+  }
+};
+
+// Solves phi(v) = x by Gauss-Newton (numerical Jacobian) from v = 0; returns the residual.
+double preimage(const ChartEval& E, int m, const Eigen::VectorXd& x, Eigen::Vector3d& v) {
+  v.setZero();
+  for (int it = 0; it < 60; ++it) {
+    const Eigen::VectorXd f = E.phi(v, m) - x;
+    Eigen::MatrixXd J(x.size(), m);
+    for (int a = 0; a < m; ++a) {
+      Eigen::Vector3d w = v;
+      const double h = 1e-7 * (1 + std::abs(v[a]));
+      w[a] += h;
+      J.col(a) = (E.phi(w, m) - E.phi(v, m)) / h;
+    }
+    const Eigen::VectorXd step = J.colPivHouseholderQr().solve(f);
+    v.head(m) -= step;
+    if (step.norm() < 1e-14) break;
+  }
+  return (E.phi(v, m) - x).norm();
+}
+
+// LEMMA (b) of param_cell.hpp: every point of M in B(p, r) has its parameter in [-t, t]^m. Random
+// points of M near p (uniform directions, distances up to r, many close to r) are pulled back by
+// Gauss-Newton on the chart's polynomials, independently of how t was derived.
+TEST(ParamCell, TheChartCoversTheBall) {
+  Rng rng(17);
+  for (const char* name : {"builtin:so3", "builtin:sphere-3", "builtin:sphere-2"}) {
+    const io::ManifoldSpec spec = io::read_spec(name);
+    const io::ShapeSpec shape = verified(spec);
+    const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
+    const io::PointSet P = N == 9 ? so3_net(40, 0.5, 3) : spread_sphere(N, 20, 0.3, 3);
+    int tested = 0;
+    for (std::size_t p = 0; p < P.size(); p += 4)
+      for (double r : {0.2, 0.7, 1.3}) {
+        const auto C = detail::rational_chart(shape, P.point(p), r);
+        ASSERT_TRUE(C) << name << " r = " << r;
+        EXPECT_LT(C->t, 4.0) << name << " r = " << r;  // not a vacuous box
+        const ChartEval E{*C};
+        for (int k = 0; k < 200; ++k) {
+          // A random point of M: SO(3) by a random unit quaternion, spheres by a random direction.
+          Eigen::VectorXd x(N);
+          double len = 0;
+          std::array<double, 4> q{};
+          for (int i = 0; i < (N == 9 ? 4 : N); ++i) {
+            const double u1 = rng.uniform() + 1e-300, u2 = rng.uniform();
+            q[i] = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2), len += q[i] * q[i];
+          }
+          for (double& c : q) c /= std::sqrt(len);
+          if (N == 9) {
+            const double w = q[0], a = q[1], b = q[2], c = q[3];
+            x << 1 - 2 * (b * b + c * c), 2 * (a * b - w * c), 2 * (a * c + w * b), 2 * (a * b + w * c),
+                1 - 2 * (a * a + c * c), 2 * (b * c - w * a), 2 * (a * c - w * b), 2 * (b * c + w * a),
+                1 - 2 * (a * a + b * b);
+          } else {
+            for (int i = 0; i < N; ++i) x[i] = q[i];
+          }
+          // Pull x towards p until it is inside B(p, r) (along the chord, then back onto M), so
+          // that points near the ball's boundary are common.
+          Eigen::VectorXd pp = Eigen::Map<const Eigen::VectorXd>(P.point(p).data(), N);
+          const double frac = rng.uniform();
+          for (int shrink = 0; shrink < 60 && (x - pp).norm() >= r; ++shrink) {
+            Eigen::VectorXd y = pp + (0.9 + 0.1 * frac) * (x - pp);
+            if (N == 9) {  // nearest rotation: the polar factor
+              Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Y(y.data());
+              Eigen::JacobiSVD<Eigen::Matrix3d> svd(Eigen::Matrix3d(Y), Eigen::ComputeFullU | Eigen::ComputeFullV);
+              Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+              Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(x.data()) = R;
+            } else {
+              x = y / y.norm();
+            }
+          }
+          if ((x - pp).norm() >= r) continue;
+          Eigen::Vector3d v;
+          ASSERT_LT(preimage(E, m, x, v), 1e-9) << name << ": Gauss-Newton did not converge";
+          for (int a = 0; a < m; ++a) EXPECT_LE(std::abs(v[a]), C->t) << name << " r = " << r << " |x - p| = " << (x - pp).norm();
+          ++tested;
+        }
+      }
+    EXPECT_GT(tested, 500) << name;
+  }
+}
+
+// On round spheres the rational charts and the implicit engine find the same Del_RM, both
+// complete, and each covering bound is at least the other's farthest certified vertex.
+TEST(ParamCell, SpheresGiveTheImplicitEnginesDelRM) {
+  for (int N : {3, 4}) {
+    const io::ManifoldSpec spec = io::read_spec(N == 3 ? "builtin:sphere-2" : "builtin:sphere-3");
+    const io::ShapeSpec shape = verified(spec);
+    const io::PointSet P = spread_sphere(N, N == 3 ? 150 : 120, N == 3 ? 0.25 : 0.45, 11);
+    const exact::ImplicitSystem system(spec.equations, N);
+    const detail::PointGrid grid(P, spec.intrinsic_dimension);
+    RestrictedDelaunayOptions o;
+    o.threads = 2;
+    const RestrictedDelaunay implicit = compute_restricted_delaunay(system, P, grid, o);
+    o.cell.shape = &shape;
+    const RestrictedDelaunay rational = compute_restricted_delaunay(system, P, grid, o);
+    ASSERT_TRUE(implicit.covering_certified) << implicit.reason;
+    ASSERT_TRUE(rational.covering_certified) << rational.reason;
+    EXPECT_EQ(implicit.rational_chart_cells, 0);
+    EXPECT_EQ(rational.rational_chart_cells, static_cast<long>(P.size()));
+    EXPECT_EQ(simplex_set(implicit), simplex_set(rational)) << "N = " << N;
+    EXPECT_GT(rational.simplices.size(), P.size());
+    EXPECT_GE(rational.covering, implicit.vertex_distance_lower);
+    EXPECT_GE(implicit.covering, rational.vertex_distance_lower);
+    EXPECT_TRUE(rational.lower_faces.empty());
+  }
+}
+
+// A well-spread sample of SO(3) and its Del_RM in rational charts (computed once for the tests).
+struct So3Case {
+  io::PointSet P;
+  RestrictedDelaunay R;
+};
+const So3Case& so3_case() {
+  static const So3Case c = [] {
+    So3Case k;
+    k.P = so3_net(500, 0.75, 5);
+    const io::ManifoldSpec spec = io::read_spec("builtin:so3");
+    const io::ShapeSpec shape = verified(spec);
+    const exact::ImplicitSystem system(spec.equations, 9);
+    const detail::PointGrid grid(k.P, 3);
+    RestrictedDelaunayOptions ro;
+    ro.threads = 2;
+    ro.cell.shape = &shape;
+    k.R = compute_restricted_delaunay(system, k.P, grid, ro);
+    return k;
+  }();
+  return c;
+}
+
+// SO(3): the certifier uses rational charts; on a well-spread sample checks 11, 12, 14 and 15 are
+// CERTIFIED (Del_RM = Del_M, the latter from the independent quaternion hull) and check 13 is
+// decided (this coarse net's Del_TM differs from Del_RM: REFUTED with witnesses); every vertex
+// witness re-checks in long double: a rotation, equidistant from its simplex, nearer to it than
+// to every other point.
+TEST(ParamCell, So3DelRMIsCertifiedAndItsVerticesRecheck) {
+  TempDir dir("param-so3");
+  const io::PointSet& P = so3_case().P;
+  CertifyOptions o;
+  o.manifold = "builtin:so3";
+  o.points = dir.file("points.txt");
+  io::write_points(o.points, P);
+  const Certificate c = run_certify(o);
+  for (CheckId id : {CheckId::covering, CheckId::restricted_delaunay, CheckId::intrinsic_delaunay,
+                     CheckId::restricted_equals_intrinsic})
+    EXPECT_EQ(check(c, id).verdict, Verdict::certified) << check_name(id) << ": " << check(c, id).summary;
+  EXPECT_NE(check(c, CheckId::tangential_equals_restricted).verdict, Verdict::undecided);
+  EXPECT_EQ(check(c, CheckId::covering).details["rational_chart_cells"].get<long>(), static_cast<long>(P.size()));
+
+  const RestrictedDelaunay& R = so3_case().R;
+  ASSERT_TRUE(R.covering_certified) << R.reason;
+  int checked = 0;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    for (const auto& v : R.cells[p].vertices) {
+      long double x[9], d[9];
+      for (int i = 0; i < 9; ++i) {
+        EXPECT_LT(v.x[i].width(), 1e-9);
+        x[i] = 0.5L * ((long double)v.x[i].lo + v.x[i].hi);
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) {
+          long double s = 0;
+          for (int j = 0; j < 3; ++j) s += x[3 * i + j] * x[3 * k + j];
+          EXPECT_NEAR(static_cast<double>(s), i == k ? 1.0 : 0.0, 1e-9);
+        }
+      auto dist2 = [&](int q) {
+        long double s = 0;
+        for (int i = 0; i < 9; ++i) d[i] = x[i] - P.point(q)[i], s += d[i] * d[i];
+        return s;
+      };
+      const long double r2 = dist2(v.simplex[0]);
+      for (int q : v.simplex) EXPECT_NEAR(static_cast<double>(dist2(q) - r2), 0.0, 1e-9);
+      for (int q = 0; q < static_cast<int>(P.size()); ++q)
+        if (!std::binary_search(v.simplex.begin(), v.simplex.end(), q)) {
+          EXPECT_GT(dist2(q), r2);
+        }
+      ++checked;
+    }
+  EXPECT_GT(checked, static_cast<int>(4 * P.size()));
+}
+
+// An exact tie on SO(3): the identity I is at exactly the same distance from six points, the
+// rotations by the same angle about the axes ±x, ±y, ±z (the same doubles c = cos, s = sin in each
+// matrix, so each |I - R|^2 = 2 (1 - c)^2 + 2 s^2 exactly), and every other point is farther: I is a
+// restricted Voronoi vertex of six points. Del_RM is never CERTIFIED there.
+TEST(ParamCell, AnExactSixfoldTieOnSo3IsNeverCertified) {
+  TempDir dir("param-so3-tie");
+  const double th = 0.35, c = std::cos(th), s = std::sin(th);
+  std::vector<std::vector<double>> pts;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {1, -1}) {
+      std::vector<double> R(9, 0.0);
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      R[4 * axis] = 1;
+      R[3 * a + a] = c, R[3 * b + b] = c, R[3 * a + b] = -sign * s, R[3 * b + a] = sign * s;
+      pts.push_back(R);
+    }
+  const double tie2 = 2 * (1 - c) * (1 - c) + 2 * s * s;
+  const io::PointSet& net = so3_case().P;
+  for (std::size_t i = 0; i < net.size(); ++i) {
+    double d = 0;
+    for (int k = 0; k < 9; ++k) d += std::pow(net.point(i)[k] - (k % 4 == 0 ? 1.0 : 0.0), 2);
+    if (d > tie2 + 0.3) pts.emplace_back(net.point(i).begin(), net.point(i).end());
+  }
+  const io::PointSet P = make_points(9, pts);
+  CertifyOptions o;
+  o.manifold = "builtin:so3";
+  o.points = dir.file("points.txt");
+  io::write_points(o.points, P);
+  const Certificate cert = run_certify(o);
+  EXPECT_NE(check(cert, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_NE(check(cert, CheckId::covering).verdict, Verdict::certified);
+  EXPECT_NE(check(cert, CheckId::tangential_equals_restricted).verdict, Verdict::certified);
+}
+
+// A complex claimed restricted on SO(3) with one simplex of Del_RM dropped, or one added, is
+// REFUTED (the dropped one by its certified restricted Voronoi vertex).
+TEST(ParamCell, So3MutantsAreRefuted) {
+  TempDir dir("param-so3-mutants");
+  const io::PointSet& P = so3_case().P;
+  const RestrictedDelaunay& R = so3_case().R;
+  ASSERT_TRUE(R.covering_certified) << R.reason;
+  io::Complex K;
+  K.num_vertices = P.size();
+  for (const auto& s : R.simplices) K.simplices.push_back(s.simplex);
+  auto run_claim = [&](const io::Complex& C) {
+    CertifyOptions o;
+    o.manifold = "builtin:so3";
+    o.points = dir.file("points.txt");
+    io::write_points(o.points, P);
+    o.complex = dir.file("complex.txt");
+    o.kind = ComplexKind::restricted;
+    io::write_complex(o.complex, C);
+    return run_certify(o);
+  };
+  io::Complex dropped = K;
+  const std::vector<int> gone = dropped.simplices[11];
+  dropped.simplices.erase(dropped.simplices.begin() + 11);
+  const Certificate d = run_claim(dropped);
+  const CheckEntry& dd = check(d, CheckId::restricted_delaunay);
+  ASSERT_EQ(dd.verdict, Verdict::refuted);
+  EXPECT_EQ(dd.witnesses[0]["simplex"].get<std::vector<int>>(), gone);
+  EXPECT_EQ(dd.witnesses[0]["kind"], "restricted_voronoi_vertex");
+  io::Complex added = K;
+  const std::set<std::vector<int>> in(K.simplices.begin(), K.simplices.end());
+  std::vector<int> extra{0, 1, 2, 3};
+  while (in.count(extra)) ++extra[3];
+  added.simplices.push_back(extra);
+  EXPECT_EQ(check(run_claim(added), CheckId::restricted_delaunay).verdict, Verdict::refuted);
+}
+
+}  // namespace
+}  // namespace delcert::certify::test
