@@ -112,6 +112,7 @@ std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<cons
   for (int i = 0; i < N; ++i) apex[i] = g.center[i] + g.radius * n[i];
   exact::UpwardRounding up;
   C.t = half_width(IA(r) + distance_to(p, apex), IA(2) * ia(exact::enclose(g.radius)));
+  C.centre = g.center, C.radius2 = g.radius * g.radius;
   if (!(C.t > 0)) return std::nullopt;
   return C;
 }
@@ -217,6 +218,7 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
   if (sgn(det0) <= 0) throw std::logic_error("restricted cell: the SO(3) rational chart has det != 1");
   exact::UpwardRounding up;
   C.t = half_width(IA(r) + distance_to(p, p0), exact::sqrt(IA(8)));
+  C.centre.assign(9, mpq_class(0)), C.radius2 = 3;  // |x|^2 = trace(x x^T) = 3 on O(3)
   if (!(C.t > 0)) return std::nullopt;
   return C;
 }
@@ -350,6 +352,15 @@ class Analysis final : public ParamCell {
       index_.push_back(q);
       cands_.push_back(P);
     }
+    // |phi - p|^2 D = (radius2 - |p - centre|^2) D - 2 (p - centre).Y (RationalChart).
+    IA A = ia(exact::enclose(chart.radius2));
+    dist2_ = D_;
+    std::vector<IA> w(N_);
+    for (int i = 0; i < N_; ++i) w[i] = IA(pp[i]) - ia(exact::enclose(chart.centre[i])), A -= exact::square(w[i]);
+    dist2_.a *= A;
+    for (int i = 0; i < 3; ++i) dist2_.b[i] *= A, dist2_.G[i] *= A, dist2_.C[i] *= A;
+    for (int i = 0; i < N_; ++i) dist2_.add(Y_[i], IA(-2) * w[i]);
+    poly_cache_.resize(cands_.size());
   }
 
   // P_q as an EnclosedPolynomial (Krawczyk's rows), from the same enclosures of D and Y.
@@ -410,14 +421,14 @@ class Analysis final : public ParamCell {
     exact::UpwardRounding up;
     const IA D = D_.tight_range(B.c.data(), B.W.data());  // >= k > 0
     const auto pp = points_.point(p_);
-    IA s(0);
-    if (X) X->resize(N_);
-    for (int i = 0; i < N_; ++i) {
-      const IA y = Y_[i].range(B.c.data(), B.W.data()) / D;
-      s += exact::square(y);
-      if (X) (*X)[i] = exact::to_interval(IA(pp[i]) + y);
+    if (X) {
+      X->resize(N_);
+      for (int i = 0; i < N_; ++i) (*X)[i] = exact::to_interval(IA(pp[i]) + Y_[i].range(B.c.data(), B.W.data()) / D);
     }
-    if (d2) *d2 = s;
+    if (d2) {
+      const IA s = dist2_.range(B.c.data(), B.W.data()) / D;
+      *d2 = IA(std::max(0.0, s.inf()), std::max(0.0, s.sup()));  // (a square: >= 0)
+    }
   }
   void undecided(const Box& V, std::span<const int> S, std::string reason) {
     Box X;
@@ -636,7 +647,10 @@ class Analysis final : public ParamCell {
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
       std::vector<EnclosedPolynomial> rows;
-      for (int i : w.S) rows.push_back(polynomial(i));
+      for (int i : w.S) {
+        if (!poly_cache_[i]) poly_cache_[i] = polynomial(i);
+        rows.push_back(*poly_cache_[i]);
+      }
       it = systems_.emplace(simplex, exact::ParametricSystem::from_enclosures(std::move(rows), 0)).first;
     }
     ++report_.krawczyk_calls;
@@ -699,6 +713,8 @@ class Analysis final : public ParamCell {
   std::vector<Quadratic> cands_;            // P_q
   EnclosedPolynomial D_enc_;                // D and Y, for Krawczyk's rows (polynomial())
   std::vector<EnclosedPolynomial> Y_enc_;
+  Quadratic dist2_;                         // |phi - p|^2 D
+  std::vector<std::optional<EnclosedPolynomial>> poly_cache_;  // polynomial(i), once built
   static constexpr int kMaxCombined = 16;
   std::unordered_set<std::uint64_t> faces_known_;  // candidate sets (known_faces' keys) whose faces are known   // COMBINED SIGNS on at most this many candidates
   std::vector<int> index_;        // cands_[i] is P_{index_[i]}

@@ -41,6 +41,8 @@
 // implicit engine (rvd.cpp).
 #pragma once
 
+#include <gmpxx.h>
+
 #include <memory>
 #include <optional>
 #include <span>
@@ -56,10 +58,16 @@ namespace delcert::certify::detail {
 
 // phi = X / D over V0 = [-t, t]^m, as above: X has N polynomials in m variables, all of X and D
 // of degree <= 2.
+// M lies on the sphere |x - centre|^2 = radius2 (a round sphere: its own; SO(3): centre 0,
+// radius2 = 3 = |x|^2 for an orthogonal x), which (a) makes exact on phi: |x - p|^2 is then affine
+// in x on M, and |phi(v) - p|^2 D(v) = (radius2 - |p - centre|^2) D(v) - 2 (p - centre).Y(v) with
+// Y = X - p D, one quadratic (rvd_param's distance enclosures).
 struct RationalChart {
   std::vector<exact::Polynomial> X;
   exact::Polynomial D;
   double t = 0;
+  std::vector<mpq_class> centre;
+  mpq_class radius2;
 };
 
 // The chart at p for the ball B(p, r) (identities (a) checked), or none: another shape, or s >= 1.

@@ -227,6 +227,33 @@ TEST(ParamCell, So3DelRMIsCertifiedAndItsVerticesRecheck) {
       ++checked;
     }
   EXPECT_GT(checked, static_cast<int>(4 * P.size()));
+  // Every cell's covering bound holds at random rotations x of that cell (x's nearest point p):
+  // |x - p| <= covering_bound_p, and the largest such distance is at most the certified covering.
+  Rng rng(23);
+  double worst = 0;
+  for (int k = 0; k < 20000; ++k) {
+    double q[4], len = 0;
+    for (double& c : q) {
+      const double u1 = rng.uniform() + 1e-300, u2 = rng.uniform();
+      c = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2), len += c * c;
+    }
+    for (double& c : q) c /= std::sqrt(len);
+    const double w = q[0], a = q[1], b = q[2], cc = q[3];
+    const double x[9] = {1 - 2 * (b * b + cc * cc), 2 * (a * b - w * cc), 2 * (a * cc + w * b),
+                         2 * (a * b + w * cc),     1 - 2 * (a * a + cc * cc), 2 * (b * cc - w * a),
+                         2 * (a * cc - w * b),     2 * (b * cc + w * a),     1 - 2 * (a * a + b * b)};
+    int best = -1;
+    double bd = INFINITY;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      double d = 0;
+      for (int i = 0; i < 9; ++i) d += (x[i] - P.point(p)[i]) * (x[i] - P.point(p)[i]);
+      if (d < bd) bd = d, best = static_cast<int>(p);
+    }
+    EXPECT_LE(std::sqrt(bd), R.cells[best].covering_bound * (1 + 1e-12)) << "a rotation of the cell of " << best;
+    worst = std::max(worst, std::sqrt(bd));
+  }
+  EXPECT_LE(worst, R.covering * (1 + 1e-12));
+  EXPECT_LT(R.covering, 1.1 * R.vertex_distance_lower);  // and the bound is not loose
 }
 
 // An exact tie on SO(3): the identity I is at exactly the same distance from six points, the
