@@ -157,8 +157,9 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // 12's witnesses, ~110 lines net), the box-budget retry of nearly finished cells (~15) and the
   // per-star summary that keeps 1M points under 1.5 GB (issue 14, ~20) took it to 7589: 7610.
   // Per-point claims (issue 15 item 2, claims v3: checks 10 and 11 against eps(p) with their
-  // witnesses, the count check and the files' hashes, ~95 lines in certify.cpp) took it to 7695: 7700.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7700) << "certify/ should stay small enough to read whole";
+  // witnesses, the count check, the files' hashes and the re-analysis of cells whose bound the
+  // shared covering target left loose, ~120 lines in certify.cpp) took it to 7719: 7725.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 7725) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
