@@ -207,9 +207,12 @@ int run_refine(const RefineArgs& a) {
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
+  // The smallest local ε: ε / 2^eps_level, and under curvature sizing the field's smallest value.
+  const bool curvature = params.sizing.kind == refine::SizingKind::curvature;
+  double eps_min = std::ldexp(refine::as_doubles(used).eps, -result.eps_level);
+  if (curvature) eps_min = std::min(eps_min, f.min_local_eps);
   std::printf("min distance       %.4g (%s/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
-              result.eps_level > 0 ? "eps_min" : "eps",
-              refine::mu0_times(std::ldexp(refine::as_doubles(used).eps, -result.eps_level)),
+              result.eps_level > 0 || curvature ? "eps_min" : "eps", refine::mu0_times(eps_min),
               result.sparsity_violations.size());
   // Wall-clock time of the whole command (printed only; the outputs carry the refiner's own times).
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -13,9 +13,16 @@
 namespace delcert::manifold {
 namespace {
 
+// A bounding box [-4, 4]^N (the reader asks one for sampling; unused here).
+std::string box(int N) {
+  std::string b = R"("bounding_box": [)";
+  for (int i = 0; i < N; ++i) b += std::string(i ? ", " : "") + R"(["-4", "4"])";
+  return b + "]";
+}
+
 Manifold make(const std::string& equations, int m, int N) {
   const std::string text = R"({"format": "delcert-manifold v1", "name": "t", "intrinsic_dimension": )" + std::to_string(m) +
-                           R"(, "ambient_dimension": )" + std::to_string(N) + R"(, "equations": [)" + equations + "]}";
+                           R"(, "ambient_dimension": )" + std::to_string(N) + R"(, "equations": [)" + equations + "], " + box(N) + "}";
   return Manifold(io::parse_spec(text, "test.json"));
 }
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "exact/polynomial.hpp"
 #include "io/claims.hpp"
 #include "tests/core/refine/refined_certificate.hpp"
 #include "tests/test_support.hpp"
@@ -75,7 +76,7 @@ TEST(RefineSizing, CurvatureFieldConvergesAndIsCertifiedPerPoint) {
   ASSERT_FALSE(radius.at("witnesses").empty());
   for (const auto& w : radius.at("witnesses")) {
     EXPECT_EQ(w.at("at_vertex"), p);
-    EXPECT_EQ(w.at("eps_at_vertex"), "1/1000000");
+    EXPECT_EQ(exact::parse_rational(w.at("eps_at_vertex").get<std::string>()), mpq_class(1, 1000000));
   }
   const auto& covering = check(refuted, "covering");
   EXPECT_EQ(covering.at("verdict"), "REFUTED");
