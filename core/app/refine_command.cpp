@@ -56,7 +56,7 @@ namespace {
 struct RefineArgs {
   std::string manifold, points, out, mesh_out, mode = "practical";
   std::string eps, gamma0 = "0.15", alpha = "0.3", beta = "1.1", delta0;
-  std::string sizing = "uniform", sizing_c = "0.5", eps_floor;
+  std::string sizing = "uniform", sizing_c, eps_floor;  // sizing_c empty: 0.5 (curvature only)
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
@@ -107,7 +107,7 @@ int run_refine(const RefineArgs& a) {
     if (params.mode == refine::RefineMode::paper)
       throw io::InputError("delcert refine", 0, "--sizing curvature needs --mode practical (the paper's Algorithm 1 uses one eps)");
     params.sizing.kind = refine::SizingKind::curvature;
-    params.sizing.c = refine::parse_rational_option("--sizing-c", a.sizing_c);
+    params.sizing.c = refine::parse_rational_option("--sizing-c", a.sizing_c.empty() ? "0.5" : a.sizing_c);
     if (!a.eps_floor.empty()) params.sizing.floor = refine::parse_rational_option("--eps-floor", a.eps_floor);
     if (!params.constants.eps)
       throw io::InputError("delcert refine", 0, "--sizing curvature needs --eps (the field's cap)");
@@ -117,7 +117,7 @@ int run_refine(const RefineArgs& a) {
     } catch (const refine::ParameterError& e) {
       throw io::InputError("delcert refine", 0, e.what());
     }
-  } else if (!a.eps_floor.empty() || a.sizing_c != "0.5") {
+  } else if (!a.eps_floor.empty() || !a.sizing_c.empty()) {
     throw io::InputError("delcert refine", 0, "--sizing-c and --eps-floor need --sizing curvature");
   }
   params.seed = a.seed;
@@ -247,8 +247,7 @@ Command add_refine_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sizing-c", args->sizing_c,
                   "curvature sizing: eps(x) <= c / kappa_max(x) (exact rational; 0.5 keeps a star's tangent planes "
-                  "within ~30 degrees)")
-      ->capture_default_str();
+                  "within ~30 degrees; default 0.5)");
   sub->add_option("--eps-floor", args->eps_floor, "curvature sizing: the field's lower bound (exact rational; default eps/10)");
   sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")
       ->capture_default_str()

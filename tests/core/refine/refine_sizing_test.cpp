@@ -117,6 +117,8 @@ TEST(RefineSizing, RefusesBadSizingOptions) {
   EXPECT_NE(zero_c.output.find("--sizing-c"), std::string::npos) << zero_c.output;
   auto uniform_floor = run(base + " --eps-floor 0.1");
   EXPECT_EQ(uniform_floor.status, 2) << uniform_floor.output;
+  auto uniform_c = run(base + " --sizing-c 0.5");  // even the default value: it means nothing without the field
+  EXPECT_EQ(uniform_c.status, 2) << uniform_c.output;
   auto paper = run(base + " --sizing curvature --mode paper");
   EXPECT_EQ(paper.status, 2) << paper.output;
   EXPECT_FALSE(std::ifstream(dir.file("o/points.txt")).good());
