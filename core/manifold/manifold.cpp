@@ -64,10 +64,13 @@ std::optional<double> Manifold::max_normal_curvature(std::span<const double> x) 
     return es.eigenvalues().cwiseAbs().maxCoeff();
   };
   if (k == 1) return curvature(Eigen::VectorXd::Ones(1));
-  // Codimension > 1: the best of a deterministic set of normal directions (±a give the same value).
+  // Codimension > 1: the best of a deterministic set of normal directions (±a give the same value),
+  // then alternating ascent from it. For a fixed unit tangent u, <ν, II(u, u)> = -aᵀ Wᵀ h(u) with
+  // h_i = uᵀ (Tᵀ H_i T) u is linear in a, so |II(u, u)| = |Wᵀ h(u)|: take u the top eigenvector of
+  // S_ν, then a = Wᵀ h(u) / |Wᵀ h(u)|, and so on; each step can only raise the value.
   Eigen::VectorXd best_a = Eigen::VectorXd::Unit(k, 0);
   double best = curvature(best_a);
-  const int samples = k == 2 ? 256 : 2048;
+  const int samples = k == 2 ? 64 : 256;
   std::uint64_t state = 0x9e3779b97f4a7c15ull;  // a fixed splitmix64 sequence: the same directions every call
   auto uniform = [&state] {
     std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
@@ -87,16 +90,23 @@ std::optional<double> Manifold::max_normal_curvature(std::span<const double> x) 
     const double c = curvature(a);
     if (c > best) best = c, best_a = a / a.norm();
   }
-  // Polish: coordinate steps of decreasing size around the best direction.
-  for (double h = k == 2 ? M_PI / samples : 0.1; h > 1e-6; h /= 2)
-    for (int i = 0; i < k; ++i)
-      for (double sg : {1.0, -1.0}) {
-        Eigen::VectorXd a = best_a;
-        a[i] += sg * h;
-        if (!(a.norm() > 0)) continue;
-        const double c = curvature(a);
-        if (c > best) best = c, best_a = a / a.norm();
-      }
+  Eigen::VectorXd a = best_a;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::VectorXd w = W * a;
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m_, m_);
+    for (int i = 0; i < k; ++i) S -= w[i] * THT[i];
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
+    Eigen::Index top = 0;
+    es.eigenvalues().cwiseAbs().maxCoeff(&top);
+    const Eigen::VectorXd u = es.eigenvectors().col(top);
+    Eigen::VectorXd h(k);
+    for (int i = 0; i < k; ++i) h[i] = u.dot(THT[i] * u);
+    const Eigen::VectorXd g = W.transpose() * h;
+    const double value = g.norm();
+    if (!(value > best * (1 + 1e-14))) break;
+    best = value;
+    a = g / value;
+  }
   return best;
 }
 

@@ -56,9 +56,10 @@ class Manifold {
   // <ν, II(u, u)> = uᵀ S_ν u with the shape operator S_ν = -Σ_i w_i Tᵀ H_i T, w = (J Jᵀ)⁻¹ J ν (T an
   // orthonormal tangent basis), so κ_max = max over unit ν of the largest |eigenvalue| of S_ν. In
   // codimension 1 there is one ν (up to sign): κ_max is exact up to rounding. In codimension k > 1
-  // the max over ν is taken over a deterministic set of directions (k = 2: 256 on a half circle;
-  // k >= 3: 2048 quasi-random ones), then polished by a few steps of coordinate search: a lower
-  // ESTIMATE of κ_max, for the sizing field only (nothing downstream trusts it).
+  // the max over ν is taken over a deterministic set of directions (k = 2: 64 on a half circle;
+  // k >= 3: 256 quasi-random ones), then raised by alternating ascent (u the top eigenvector of S_ν,
+  // ν along II(u, u)) to a local maximum: a lower ESTIMATE of κ_max, for the sizing field only
+  // (nothing downstream trusts it).
   // nullopt where J_F(x) is rank deficient.
   std::optional<double> max_normal_curvature(std::span<const double> x) const;
 
