@@ -67,6 +67,15 @@ TEST(MaxNormalCurvature, CliffordTorusInCodimensionTwo) {
   EXPECT_NEAR(kappa(M, {std::sqrt(0.5), 0, 0, std::sqrt(0.5)}), std::sqrt(2.0), 1e-6);
 }
 
+TEST(MaxNormalCurvature, SO3InCodimensionSix) {
+  // SO(3) in R^9 with the Frobenius metric: a unit-speed one-parameter subgroup exp(tK), |K| = 1,
+  // K = (e1 e2ᵀ - e2 e1ᵀ)/sqrt(2), has acceleration K² of norm 1/sqrt(2), normal to SO(3); no
+  // direction is more curved. Homogeneous: the same at every rotation.
+  const Manifold M(io::read_spec("builtin:so3"));
+  EXPECT_NEAR(kappa(M, {1, 0, 0, 0, 1, 0, 0, 0, 1}), 1 / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(kappa(M, {0, -1, 0, 1, 0, 0, 0, 0, 1}), 1 / std::sqrt(2.0), 1e-9);
+}
+
 TEST(MaxNormalCurvature, FlatIsZero) {
   const Manifold M = make(R"eq("x3 - x1/2")eq", 2, 3);
   EXPECT_NEAR(kappa(M, {1, 7, 0.5}), 0.0, 1e-14);
