@@ -19,6 +19,18 @@
 // With --reps R, delcert runs R times (the outputs are identical; the JSON gives the median
 // total time and every run's); GUDHI runs once (its time is set by the limit).
 //
+// --certify runs delcert-certify's checks (in process, certify::run_certify, every check) on each
+// delcert output with its own claims and adds "certificate": the overall verdict, each check's,
+// and the time (issue 15: "the certifier's verdict on the output"). The outputs are written to
+// --out-dir, or to a temporary directory removed at the end.
+//
+// --sizing SPEC:EPS[:FLOOR[:C]] (repeatable; issue 15 item 2) compares the curvature sizing field
+// with the uniform ε that certifies the same spec: from the same ε-net of SPEC at EPS, delcert
+// refine --sizing curvature (cap EPS, --eps-floor FLOOR, --sizing-c C, defaults EPS/10 and 1/2),
+// then the uniform run at ε_u = the field's smallest value over the output (three significant
+// digits below it: the finest ε the field asked for anywhere, which a uniform ε must match to give
+// every point the same guarantee); prints both point counts, the ratio, and both certificates.
+//
 #include "bench/gudhi_input.hpp"
 
 #include <nlohmann/json.hpp>
@@ -26,7 +38,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -36,6 +50,7 @@
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
 #include "core/refine/simplex_measures.hpp"
+#include "certify/certify.hpp"
 #include "core/sampling/sampling.hpp"
 #include "core/tangential/tangent_planes.hpp"
 #include "io/points.hpp"
@@ -132,9 +147,36 @@ json thickness_distribution(const refine::RefineResult& r, int m) {
   return j;
 }
 
+// delcert-certify on a refine output directory with its own claims: every check, in process.
+json certify_output(const std::string& manifold_source, const std::string& dir, int threads) {
+  certify::CertifyOptions o;
+  o.manifold = manifold_source;
+  o.points = dir + "/points.txt";
+  o.complex = dir + "/complex.txt";
+  o.claims = dir + "/claims.json";
+  o.threads = threads;
+  auto t0 = std::chrono::steady_clock::now();
+  json j;
+  try {
+    const certify::Certificate c = certify::run_certify(o);
+    j["verdict"] = certify::to_string(c.overall());
+    json checks = json::object();
+    for (const auto& e : c.checks) checks[e.name()] = certify::to_string(e.verdict);
+    j["checks"] = checks;
+  } catch (const std::exception& e) {
+    j["verdict"] = "ERROR";
+    j["error"] = e.what();
+  }
+  j["seconds"] = seconds_since(t0);
+  return j;
+}
+
 json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
-                 const std::string& name, const std::string& gamma0, double time_limit) {
+                 const std::string& name, const std::string& gamma0, double time_limit, bool certify_it,
+                 const refine::SizingField* sizing = nullptr, const std::string& eps = {}) {
   refine::RefineParameters p;
+  if (sizing) p.sizing = *sizing;
+  if (!eps.empty()) p.constants.eps = refine::ExactParameter::parse(eps);
   p.threads = threads;
   p.seed = seed;
   p.constants.gamma0 = refine::ExactParameter::parse(gamma0);
@@ -146,6 +188,7 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
   const refine::ConstantsAsDoubles used = refine::as_doubles(r.parameters.constants);
   j["parameters"] = {{"mode", "practical"},
                      {"eps", r.parameters.constants.eps.value().text},
+                     {"sizing", refine::to_string(r.parameters.sizing.kind)},
                      {"gamma0", used.gamma0},
                      {"alpha", used.alpha},
                      {"beta", used.beta},
@@ -156,6 +199,10 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
   j["stop_reason"] = refine::to_string(r.stop_reason);
   j["rounds"] = r.rounds;
   j["points_added"] = r.points.size() - r.input_size;
+  j["points"] = r.points.size();
+  if (!r.local_eps.empty())
+    j["local_eps_min"] = *std::min_element(r.local_eps.begin(), r.local_eps.end()),
+    j["local_eps_max"] = *std::max_element(r.local_eps.begin(), r.local_eps.end());
   json rules = json::object();
   for (refine::Rule rule : refine::kRules)
     rules[refine::to_string(rule)] = {{"inserted", r.rules[rule].inserted},
@@ -192,8 +239,55 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
       io::write_points(dir + "/input.txt", input);
     }
     j["output"] = dir;
+    if (certify_it) j["certificate"] = certify_output(manifold.spec().source, dir, threads);
   }
   return j;
+}
+
+// One --sizing row: the curvature field against the uniform ε at the field's minimum, same ε-net.
+json run_sizing(const std::string& item, int threads, std::uint64_t seed, const std::string& out_dir) {
+  // SPEC:EPS[:FLOOR[:C]]; SPEC may be builtin:NAME (its colon is kept).
+  std::vector<std::string> parts;
+  {
+    std::stringstream ss(item);
+    std::string x;
+    while (std::getline(ss, x, ':')) parts.push_back(x);
+    if (parts.size() >= 2 && parts[0] == "builtin") parts[0] += ":" + parts[1], parts.erase(parts.begin() + 1);
+  }
+  if (parts.size() < 2 || parts.size() > 4) throw std::runtime_error("--sizing '" + item + "': expected SPEC:EPS[:FLOOR[:C]]");
+  manifold::Manifold manifold(io::read_spec(parts[0]));
+  const std::string eps = parts[1];
+  refine::SizingField sizing;
+  sizing.kind = refine::SizingKind::curvature;
+  if (parts.size() >= 3 && !parts[2].empty()) sizing.floor = refine::ExactParameter::parse(parts[2]);
+  if (parts.size() >= 4) sizing.c = refine::ExactParameter::parse(parts[3]);
+  sampling::EpsNetOptions eo;
+  eo.eps = refine::ExactParameter::parse(eps).value.get_d();
+  eo.seed = seed;
+  const io::PointSet net =
+      sampling::eps_net_with_at_least(manifold, eo, static_cast<std::size_t>(manifold.intrinsic_dimension() + 2)).points;
+  const std::string name = "sizing-" + manifold.spec().name;
+  json e;
+  e["manifold"] = parts[0];
+  e["input"] = {{"eps_net", eps}, {"points", net.size()}, {"seed", seed}};
+  std::cerr << "sizing " << parts[0] << ": curvature" << std::flush;
+  json curv = run_delcert(manifold, net, threads, seed, out_dir, name + "-curvature", "0.15", 0, true, &sizing, eps);
+  // The uniform ε at the field's minimum, three significant digits below it.
+  const double lo = curv["local_eps_min"].get<double>();
+  const int e10 = static_cast<int>(std::floor(std::log10(lo * (1 - 1e-9)))) - 2;
+  const double scale = std::pow(10.0, e10);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", std::max(0, -e10), std::floor(lo * (1 - 1e-9) / scale) * scale);
+  std::cerr << " (" << curv["points"] << " points), uniform eps " << text << std::flush;
+  json uni = run_delcert(manifold, net, threads, seed, out_dir, name + "-uniform", "0.15", 0, true, nullptr, text);
+  std::cerr << " (" << uni["points"] << " points)\n";
+  e["curvature"] = curv;
+  e["uniform"] = uni;
+  e["uniform_eps"] = text;
+  e["points_curvature"] = curv["points"];
+  e["points_uniform"] = uni["points"];
+  e["ratio_uniform_over_curvature"] = uni["points"].get<double>() / curv["points"].get<double>();
+  return e;
 }
 
 }  // namespace
@@ -207,6 +301,8 @@ int main(int argc, char** argv) {
   bool gudhi = true;
   std::string out_dir, gamma0_list = "0.1";
   double time_limit = 0;
+  bool certify_outputs = false;
+  std::vector<std::string> sizing_items;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -223,12 +319,23 @@ int main(int argc, char** argv) {
     else if (a == "--out-dir") out_dir = next();
     else if (a == "--gamma0") gamma0_list = next();
     else if (a == "--time-limit") time_limit = std::stod(next());
+    else if (a == "--certify") certify_outputs = true;
+    else if (a == "--sizing") sizing_items.push_back(next());
     else {
       std::cerr << "usage: bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120] "
                    "[--max-perturb 0.01] [--seed 1] [--no-gudhi] [--out-dir DIR] [--gamma0 0.1,0.15,...] "
-                   "[--time-limit S]\n";
+                   "[--time-limit S] [--certify] [--sizing SPEC:EPS[:FLOOR[:C]]] ...\n";
       return 2;
     }
+  }
+  // --certify and --sizing certify files: without --out-dir, a temporary directory (removed at the end).
+  std::string temp_dir;
+  if (out_dir.empty() && (certify_outputs || !sizing_items.empty())) {
+    temp_dir = (std::filesystem::temp_directory_path() / ("bench_refine-" + std::to_string(seed) + "-" +
+                                                         std::to_string(std::chrono::steady_clock::now().time_since_epoch().count())))
+                   .string();
+    std::filesystem::create_directories(temp_dir);
+    out_dir = temp_dir;
   }
   json doc;
   doc["benchmark"] = "refinement to a consistent tangential complex: delcert refine vs GUDHI's perturbation fix";
@@ -257,7 +364,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < reps; ++r) {
         json one = run_delcert(manifold, ps, threads, seed, r == 0 ? out_dir : std::string(),
                                c.manifold + "-" + std::to_string(c.count) + (sweep.empty() ? "" : "-gamma0-" + g), g,
-                               time_limit);
+                               time_limit, certify_outputs && r == 0);
         totals.push_back(one["time_seconds"]["total"].get<double>());
         if (r == 0) d = one;
         else if (one["points_added"] != d["points_added"]) d["warning"] = "runs differ: the refiner is not deterministic";
@@ -283,6 +390,15 @@ int main(int argc, char** argv) {
     std::cerr << e.dump(2) << std::endl;  // each case as soon as it is done (stdout gets one document)
   }
   doc["results"] = results;
+  if (!sizing_items.empty()) {
+    json rows = json::array();
+    for (const auto& item : sizing_items) {
+      rows.push_back(run_sizing(item, threads, seed, out_dir));
+      std::cerr << rows.back().dump(2) << std::endl;  // as soon as it is done, as the cases
+    }
+    doc["sizing"] = rows;
+  }
+  if (!temp_dir.empty()) std::filesystem::remove_all(temp_dir);
   std::cout << doc.dump(2) << std::endl;
   return 0;
 }

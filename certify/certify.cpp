@@ -101,6 +101,8 @@ struct Stopwatch {
 // The inputs, each read once: the bytes parsed are the bytes hashed into the certificate.
 struct Inputs {
   std::string spec_text, points_text, complex_text, claims_text;
+  std::string per_point_sha256;      // claims v3: SHA-256 of each per-point file (star radius, covering), "" when absent
+  std::string covering_per_point_sha256;
   io::ManifoldSpec spec;
   io::PointSet points;
   std::vector<long> point_lines;     // line of each point in the points file
@@ -148,6 +150,19 @@ Inputs read_inputs(const CertifyOptions& o) {
   if (!o.claims.empty()) {
     in.claims_text = io::read_file(o.claims);
     in.claims = io::parse_claims(in.claims_text, o.claims);
+    // Version 3: one eps(p) per point, in the order of the points.
+    const std::pair<const std::string*, const std::vector<mpq_class>*> per_point[] = {
+        {&in.claims.star_radius_per_point_path, &in.claims.star_radius_per_point},
+        {&in.claims.covering_per_point_path, &in.claims.covering_per_point}};
+    for (const auto& [path, values] : per_point)
+      if (!path->empty() && values->size() != in.points.size())
+        throw io::InputError(*path, 0, "holds " + std::to_string(values->size()) + " values but " + o.points + " has " +
+                                           std::to_string(in.points.size()) +
+                                           " points: write one eps(p) per point, in the order of the points");
+    if (!in.claims.star_radius_per_point_path.empty())
+      in.per_point_sha256 = detail::Sha256::hex(io::read_file(in.claims.star_radius_per_point_path));
+    if (!in.claims.covering_per_point_path.empty())
+      in.covering_per_point_sha256 = detail::Sha256::hex(io::read_file(in.claims.covering_per_point_path));
   }
   return in;
 }
@@ -164,6 +179,10 @@ json inputs_json(const Inputs& in, const CertifyOptions& o) {
   j["residual_tolerance"] = {{"value", exact::rational_to_string(in.spec.residual_tolerance)},
                              {"source", o.residual_tolerance.empty() ? "the manifold spec" : "--residual-tolerance"}};
   j["claims"] = o.claims.empty() ? json(nullptr) : json{{"path", o.claims}, {"sha256", detail::Sha256::hex(in.claims_text)}};
+  if (!in.per_point_sha256.empty())
+    j["claims"]["star_radius_per_point"] = {{"path", in.claims.star_radius_per_point_path}, {"sha256", in.per_point_sha256}};
+  if (!in.covering_per_point_sha256.empty())
+    j["claims"]["covering_per_point"] = {{"path", in.claims.covering_per_point_path}, {"sha256", in.covering_per_point_sha256}};
   return j;
 }
 
@@ -188,6 +207,8 @@ json parameters_json(const Inputs& in) {
   const io::Claims& claims = in.claims;
   if (claims.star_radius) params["star_radius"] = exact::rational_to_string(*claims.star_radius);
   if (claims.covering) params["covering"] = exact::rational_to_string(*claims.covering);
+  if (!claims.star_radius_per_point_file.empty()) params["star_radius_per_point"] = claims.star_radius_per_point_file;
+  if (!claims.covering_per_point_file.empty()) params["covering_per_point"] = claims.covering_per_point_file;
   if (claims.sparsity) params["sparsity"] = exact::rational_to_string(*claims.sparsity);
   if (claims.gamma0) params["gamma0"] = exact::rational_to_string(*claims.gamma0);
   if (claims.power_protection) params["power_protection"] = exact::rational_to_string(*claims.power_protection);
@@ -437,8 +458,16 @@ struct RadiusResult {
   exact::Interval max_r2{-INFINITY, -INFINITY};   // of R_p(s)^2 over the certified cells
 };
 
-RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& eps) {
+// With a per-point claim (claims v3), eps is eps(p) at each star's point p: `per_point` holds them
+// (one per point) and `per_point_file` names the file; `eps` is then absent.
+RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& eps,
+                               const std::vector<mpq_class>* per_point = nullptr, const std::string& per_point_file = {}) {
   RadiusResult R;
+  const bool claimed = eps || per_point;
+  // The largest claimed bound: what a CERTIFIED verdict implies about the printed max (the guard).
+  mpq_class eps_max = eps ? *eps : mpq_class(0);
+  if (per_point)
+    for (const auto& e : *per_point) eps_max = std::max(eps_max, e);
   CheckEntry& radius = R.entry;
   exact::Interval& max_r2 = R.max_r2;
   json radius_at;
@@ -453,18 +482,21 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
     max_r2 = {std::max(max_r2.lo, r.max_radius2.lo), std::max(max_r2.hi, r.max_radius2.hi)};
     for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) continue;  // not a cell: check 6 is undecided
-      if (eps && c.eps_sign >= 0) {
+      if (claimed && c.eps_sign >= 0) {
         ++too_big;
-        radius.refute("a star simplex has R_p(s) >= eps");
-        radius.add_witness({{"kind", "radius_not_below_eps"}, {"simplex", c.simplex}, {"at_vertex", r.p},
-                            {"radius_squared", enclosure_json(c.radius2)}, {"eps_squared", rational_json(*eps * *eps)},
-                            {"exact_sign", c.eps_sign}});
+        const mpq_class& e = eps ? *eps : (*per_point)[r.p];
+        radius.refute(eps ? "a star simplex has R_p(s) >= eps" : "a star simplex at p has R_p(s) >= eps(p)");
+        json w = {{"kind", "radius_not_below_eps"}, {"simplex", c.simplex}, {"at_vertex", r.p},
+                  {"radius_squared", enclosure_json(c.radius2)}, {"eps_squared", rational_json(e * e)},
+                  {"exact_sign", c.eps_sign}};
+        if (!eps) w["eps_at_vertex"] = exact::rational_to_string(e);
+        radius.add_witness(w);
       }
     }
   }
   if (R.cells) {
     // What the verdict implies about the printed bound (the consistency guard, certificate.hpp).
-    if (eps) radius.require_at_most("max_radius_squared", max_r2.hi, *eps * *eps);
+    if (claimed) radius.require_at_most("max_radius_squared", max_r2.hi, eps_max * eps_max);
     radius.margin = {{"max_radius_squared", {{"certified_upper_bound", num(max_r2.hi)}, {"enclosure", enclosure_json(max_r2)}}},
                      {"attained_at", radius_at}};
   }
@@ -472,13 +504,19 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   if (eps) {
     radius.claim = {{"star_radius", exact::rational_to_string(*eps)},
                     {"meaning", "R_p(s) < star_radius for every star simplex"}};
+  } else if (per_point) {
+    radius.claim = {{"star_radius_per_point", per_point_file},
+                    {"meaning", "R_p(s) < eps(p) for every star simplex s at every point p (eps(p) from the file)"},
+                    {"max_eps", exact::rational_to_string(eps_max)}};
   } else if (radius.verdict == Verdict::certified) {
     radius.verdict = Verdict::report;
   }
   radius.summary = "max R_p(s)^2 <= " + num(max_r2.hi) +
-                   (eps ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= star_radius = " +
-                              exact::rational_to_string(*eps)
-                        : " (no star_radius claim)");
+                   (eps         ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= star_radius = " +
+                                      exact::rational_to_string(*eps)
+                    : per_point ? "; " + std::to_string(too_big) + " star cells at p with R_p(s) >= eps(p) (" +
+                                      per_point_file + ")"
+                                : " (no star_radius claim)");
   return R;
 }
 
@@ -657,8 +695,37 @@ CheckEntry tangent_space_undefined(CheckId id, int point, bool claimed) {
 }
 
 // Check 11: the certified covering radius (P is an eps-sample of M), against the covering claim.
+// A per-point covering claim compares each cell's bound with eps(p), but the bounds are refined only
+// against the largest vertex distance found anywhere (COVERING TARGET, restricted.hpp): a cell far
+// smaller than the largest keeps a loose bound. Such a cell is analysed again on its own (both
+// passes, same radius and options: the target is its own vertices), and its bound replaced by the
+// new one when that is complete and smaller: both are certified upper bounds of max |x - p| over
+// the same set M ∩ Vor(p) ∩ B(p, r_p), so the covering argument is unchanged. Work only.
+void sharpen_per_point_cells(RestrictedDelaunay& R, const std::vector<mpq_class>& eps, const exact::ImplicitSystem& system,
+                             const io::PointSet& P, const detail::PointGrid& grid, const RestrictedCellOptions& options,
+                             int threads) {
+  std::vector<int> loose;
+  for (std::size_t p = 0; p < R.cells.size(); ++p)
+    if (R.cells[p].complete && !(R.cells[p].covering_bound < exact::enclose(eps[p]).lo)) loose.push_back(static_cast<int>(p));
+  detail::parallel_for(loose.size(), threads, [&](std::size_t i, int) {
+    RestrictedCellReport& cell = R.cells[loose[i]];
+    RestrictedCellOptions o = options;
+    o.graph_radius = cell.graph_radius;
+    o.covering_width = options.covering_width / 16;  // boxes 16 times narrower: the bound within ~1/2000 of r_p
+    const RestrictedCellReport again = analyse_restricted_cell(system, P, grid, loose[i], o);
+    if (again.complete && again.covering_bound < cell.covering_bound)
+      cell.covering_bound = again.covering_bound, cell.covering_location = again.covering_location;
+  });
+}
+
+// With a per-point claim (claims v3, covering_per_point): every x in M whose nearest sample point
+// is p has |x - p| < eps(p). CERTIFIED when the covering argument holds (restricted.hpp: every x
+// with nearest point p lies in p's kept boxes) and every cell's certified bound is below eps(p);
+// REFUTED by a certified restricted Voronoi vertex at distance >= eps(q) from a point q of its
+// simplex (the vertex is in Vor(q), at the same distance from every point of the simplex).
 CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_class>& claim,
-                          const io::ManifoldSpec& spec) {
+                          const io::ManifoldSpec& spec, const std::vector<mpq_class>* per_point = nullptr,
+                          const std::string& per_point_file = {}) {
   CheckEntry cov(CheckId::covering);
   const bool one_component = !spec.expected.betti_z2.empty() && spec.expected.betti_z2[0] == 1;
   const bool anchored = !R.simplices.empty();
@@ -684,6 +751,44 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
       cov.undecide("the certified covering bound is not below the claim");
     }
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, *claim);
+  }
+  json worst_cell, per_point_details;
+  if (per_point) {
+    mpq_class eps_max(0);
+    for (const auto& e : *per_point) eps_max = std::max(eps_max, e);
+    cov.claim = {{"covering_per_point", per_point_file},
+                 {"meaning", "every x in M whose nearest sample point is p has |x - p| < eps(p) (eps(p) from the file)"},
+                 {"max_eps", exact::rational_to_string(eps_max)}};
+    long refuting = 0;
+    for (const auto& s : R.simplices)
+      for (int q : s.simplex) {
+        const mpq_class& e = (*per_point)[q];
+        if (!(s.distance_lower >= exact::enclose(e).hi)) continue;
+        ++refuting;
+        cov.refute("a point of M in the restricted Voronoi cell of p is at distance >= eps(p) from p");
+        json w = vertex_witness(s);
+        w["point"] = q;
+        w["eps_at_point"] = exact::rational_to_string(e);
+        w["distance_to_point"] = {{"certified_lower_bound", num(s.distance_lower)}};
+        w["detail"] = "a certified restricted Voronoi vertex: its nearest sample points are the simplex's, all at the "
+                      "same distance, which is >= eps(point)";
+        cov.add_witness(w, 5);
+      }
+    // The cells whose certified bound is not below eps(p), and the tightest one (largest bound / eps(p)).
+    long not_below = 0;
+    double worst = -1;
+    for (std::size_t p = 0; p < R.cells.size() && p < per_point->size(); ++p) {
+      const exact::Interval e = exact::enclose((*per_point)[p]);
+      const double ratio = R.cells[p].covering_bound / e.lo;
+      if (ratio > worst)
+        worst = ratio, worst_cell = {{"point", p}, {"eps_at_point", exact::rational_to_string((*per_point)[p])},
+                                     {"certified_upper_bound", num(R.cells[p].covering_bound)}};
+      if (!(R.cells[p].covering_bound < e.lo)) ++not_below;
+    }
+    if (not_below > 0 && cov.verdict == Verdict::certified)
+      cov.undecide(std::to_string(not_below) + " cells' certified covering bound is not below their eps(p)");
+    if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, eps_max);
+    per_point_details = {{"cells_not_below_eps", not_below}, {"refuting_vertices", refuting}, {"tightest_cell", worst_cell}};
   }
   if (R.covering_point >= 0)
     cov.margin = {{"covering_radius", {{"certified_upper_bound", num(R.covering)}, {"certified_lower_bound", num(lower)}}},
@@ -713,6 +818,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                  {"rational_chart_cells", R.rational_chart_cells},
                  {"krawczyk_calls", R.krawczyk_calls},
                  {"krawczyk_failures", R.krawczyk_failures}};
+  if (per_point) cov.details["per_point"] = per_point_details;
   if (!one_component && cov.verdict == Verdict::certified)
     cov.details["note"] = "certified under the stated component assumption";
   json undecided = json::array();
@@ -729,7 +835,12 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   cov.summary = (R.covering_certified ? "P is an eps-sample of M with eps <= " + num(R.covering)
                                       : "covering radius not certified (" + R.reason + ")") +
                 "; a restricted Voronoi vertex is at distance >= " + num(lower) + " from P" +
-                (claim ? "; claim " + exact::rational_to_string(*claim) : "");
+                (claim ? "; claim " + exact::rational_to_string(*claim) : "") +
+                (per_point ? "; claim eps(p) per point (" + per_point_file + "), tightest cell " +
+                                 (worst_cell.is_null() ? std::string("none") : worst_cell["point"].dump() + ": bound " +
+                                                                                   worst_cell["certified_upper_bound"].dump() +
+                                                                                   " vs eps(p) " + worst_cell["eps_at_point"].get<std::string>())
+                           : "");
   return cov;
 }
 
@@ -1045,7 +1156,9 @@ Certificate run_certify(const CertifyOptions& o) {
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
 
-  const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.star_radius};
+  const auto* radius_per_point = claims.star_radius_per_point_file.empty() ? nullptr : &claims.star_radius_per_point;
+  const auto* covering_per_point = claims.covering_per_point_file.empty() ? nullptr : &claims.covering_per_point;
+  const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.star_radius, radius_per_point};
   std::optional<Stars> stars;  // Del_TM(P): needs T_p M at every point
   std::optional<CheckEntry> stars_entry, consistency, protection_entry, radius_entry, secure, theorem;
   std::optional<ProtectionResult> protection;
@@ -1057,7 +1170,7 @@ Certificate run_certify(const CertifyOptions& o) {
     stars_entry = check_stars(*stars, m);
     consistency = check_consistency(*stars, S, ctx_consistency);
     protection = check_power_protection(*stars, claims.power_protection);
-    radius = check_star_radius(*stars, claims.star_radius);
+    radius = check_star_radius(*stars, claims.star_radius, radius_per_point, claims.star_radius_per_point_file);
     protection_entry = protection->entry, radius_entry = radius->entry;
     watch.record(C, "assemble_checks_3_4_6_10");
   } else {
@@ -1065,7 +1178,7 @@ Certificate run_certify(const CertifyOptions& o) {
     stars_entry = tangent_space_undefined(CheckId::stars, first, false);
     consistency = tangent_space_undefined(CheckId::consistency, first, false);
     protection_entry = tangent_space_undefined(CheckId::power_protection, first, claims.power_protection.has_value());
-    radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value());
+    radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value() || radius_per_point);
     secure = tangent_space_undefined(CheckId::secure_simplices, first, claims.secure);
     theorem = tangent_space_undefined(CheckId::theorem, first, false);
   }
@@ -1110,7 +1223,8 @@ Certificate run_certify(const CertifyOptions& o) {
     phase("checks 11-13 restricted Voronoi cells");
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
-    covering = check_covering(*R, claims.covering, spec);
+    if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
+    covering = check_covering(*R, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
     restricted = check_restricted(*R, in.given, restricted_kind, m);
     equal = on_M ? check_tangential_equals_restricted(*stars, *R, !restricted_kind && !intrinsic_kind)
                  : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);

@@ -491,6 +491,7 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   std::optional<exact::RationalConstant> prot, eps2;
   if (S.power_protection) prot.emplace(*S.power_protection);
   if (S.eps) eps2.emplace(mpq_class(*S.eps * *S.eps));
+  else if (S.eps_per_point) eps2.emplace(mpq_class((*S.eps_per_point)[L.global[0]] * (*S.eps_per_point)[L.global[0]]));
   CellReport R;
   R.simplex = to_global(L, c);
   exact::TangentCell tc = L.chart().cell(std::span<const int>(c.data(), m + 1), ctx);

@@ -54,6 +54,9 @@ struct StarSettings {
   int m = 0;
   std::optional<mpq_class> power_protection;  // claimed delta-check^2 (a squared distance)
   std::optional<mpq_class> eps;               // claimed eps: every R_p(s) < eps
+  // Claimed eps(p) per point (claims v3, star_radius_per_point): every R_p(s) < eps(p) at p.
+  // Exclusive with eps; null when absent.
+  const std::vector<mpq_class>* eps_per_point = nullptr;
 };
 
 // One cell {p, ...} tested at p (its fields ordered without padding; certify.cpp keeps a star's cells only for witnesses).
@@ -68,7 +71,7 @@ struct CellReport {
   int margin_point = -1;                   // the q attaining the smallest lower bound
   int protection_point = -1;               // a q with |c - q|^2 - R^2 <= claim, if any
   int protection_sign = 1;                 // its exact sign of |c - q|^2 - R^2 - claim
-  int eps_sign = -1;                       // exact sign(R^2 - eps^2) (when eps is claimed)
+  int eps_sign = -1;                       // exact sign(R^2 - eps^2) (eps(p)^2 per point; when claimed)
   bool degenerate = false;                 // projection to T_p affinely dependent (no centre)
   bool empty() const { return !degenerate && conflict < 0 && tie < 0; }
 };

@@ -24,6 +24,11 @@
 //              unless the practical mode had to shrink ε locally; docs/refinement.md);
 //   ε when only --points is given: two significant digits above the input's largest R_p, so
 //              that Rule 1 has nothing to do at the start.
+//   --sizing uniform (the paper's single ε; output byte-identical to before the option existed);
+//   --sizing curvature: ε(x) = min(ε, max(floor, c / κ_max(x))), --sizing-c c = 1/2 (why:
+//              core/refine/parameters.hpp), --eps-floor = ε/10; claims.json is then version 3 with
+//              DIR/eps.txt, ε(p) per point (docs/refinement.md, "Sizing field").
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -51,6 +56,7 @@ namespace {
 struct RefineArgs {
   std::string manifold, points, out, mesh_out, mode = "practical";
   std::string eps, gamma0 = "0.15", alpha = "0.3", beta = "1.1", delta0;
+  std::string sizing = "uniform", sizing_c, eps_floor;  // sizing_c empty: 0.5 (curvature only)
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
@@ -77,6 +83,7 @@ int run_refine(const RefineArgs& a) {
       throw io::InputError(a.out, 0, "--out: exists and is not a directory; refine writes a directory of four files");
     std::vector<std::string> outs;
     for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"}) outs.push_back((fs::path(a.out) / f).string());
+    if (a.sizing == "curvature") outs.push_back((fs::path(a.out) / "eps.txt").string());
     for (const auto& o : outs) io::check_output_path(o, "--out", {a.manifold, a.points}, {a.mesh_out}, true);
     if (!a.mesh_out.empty()) check_mesh_out(a.mesh_out, {a.manifold, a.points}, outs);
   }
@@ -96,6 +103,23 @@ int run_refine(const RefineArgs& a) {
   if (!a.delta0.empty()) texts.delta0 = a.delta0;
   texts.gamma0 = a.gamma0, texts.alpha = a.alpha, texts.beta = a.beta;
   params.constants = refine::parse_constants(texts, m);
+  if (a.sizing == "curvature") {
+    if (params.mode == refine::RefineMode::paper)
+      throw io::InputError("delcert refine", 0, "--sizing curvature needs --mode practical (the paper's Algorithm 1 uses one eps)");
+    params.sizing.kind = refine::SizingKind::curvature;
+    params.sizing.c = refine::parse_rational_option("--sizing-c", a.sizing_c.empty() ? "0.5" : a.sizing_c);
+    if (!a.eps_floor.empty()) params.sizing.floor = refine::parse_rational_option("--eps-floor", a.eps_floor);
+    if (!params.constants.eps)
+      throw io::InputError("delcert refine", 0, "--sizing curvature needs --eps (the field's cap)");
+    try {
+      refine::SizingField check = params.sizing;
+      refine::resolve_sizing(check, *params.constants.eps);
+    } catch (const refine::ParameterError& e) {
+      throw io::InputError("delcert refine", 0, e.what());
+    }
+  } else if (!a.eps_floor.empty() || !a.sizing_c.empty()) {
+    throw io::InputError("delcert refine", 0, "--sizing-c and --eps-floor need --sizing curvature");
+  }
   params.seed = a.seed;
   params.threads = a.threads;
   params.max_points = a.max_points;
@@ -159,6 +183,13 @@ int run_refine(const RefineArgs& a) {
   const refine::Constants& used = result.parameters.constants;
   std::printf("eps                %s%s\n", used.eps.value().text.c_str(),
               result.eps_derived ? " (derived from the input's largest R_p)" : "");
+  if (params.sizing.kind == refine::SizingKind::curvature) {
+    const auto& sz = result.parameters.sizing;
+    double lo = INFINITY, hi = 0;
+    for (double e : result.local_eps) lo = std::min(lo, e), hi = std::max(hi, e);
+    std::printf("sizing             curvature: eps(x) = min(eps, max(%s, %s / kappa_max(x))); eps(p) in [%.4g, %.4g] -> eps.txt\n",
+                sz.floor->text.c_str(), sz.c.text.c_str(), lo, hi);
+  }
   std::printf("points             %zu input + %zu inserted = %zu\n", result.input_size, result.points.size() - result.input_size,
               result.points.size());
   for (refine::Rule rule : refine::kRules)
@@ -176,9 +207,12 @@ int run_refine(const RefineArgs& a) {
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);
+  // The smallest local ε: ε / 2^eps_level, and under curvature sizing the field's smallest value.
+  const bool curvature = params.sizing.kind == refine::SizingKind::curvature;
+  double eps_min = std::ldexp(refine::as_doubles(used).eps, -result.eps_level);
+  if (curvature) eps_min = std::min(eps_min, f.min_local_eps);
   std::printf("min distance       %.4g (%s/9 = %.4g; %zu sparsity violations)\n", f.min_distance,
-              result.eps_level > 0 ? "eps_min" : "eps",
-              refine::mu0_times(std::ldexp(refine::as_doubles(used).eps, -result.eps_level)),
+              result.eps_level > 0 || curvature ? "eps_min" : "eps", refine::mu0_times(eps_min),
               result.sparsity_violations.size());
   // Wall-clock time of the whole command (printed only; the outputs carry the refiner's own times).
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -206,6 +240,15 @@ Command add_refine_command(CLI::App& app) {
   sub->add_option("--delta0", args->delta0,
                   "protection ratio delta0: claimed protection delta0^2 (eps_min/9)^2, eps_min the smallest local eps (default: Gamma0^ceil((m+1)/2), "
                   "the largest power of Gamma0 allowed by the paper's H3)");
+  sub->add_option("--sizing", args->sizing,
+                  "sizing field: uniform (one eps) or curvature: eps(x) = min(eps, max(floor, c / kappa_max(x))), "
+                  "claims.json v3 with eps(p) per point in eps.txt")
+      ->check(CLI::IsMember({"uniform", "curvature"}))
+      ->capture_default_str();
+  sub->add_option("--sizing-c", args->sizing_c,
+                  "curvature sizing: eps(x) <= c / kappa_max(x) (exact rational; 0.5 keeps a star's tangent planes "
+                  "within ~30 degrees; default 0.5)");
+  sub->add_option("--eps-floor", args->eps_floor, "curvature sizing: the field's lower bound (exact rational; default eps/10)");
   sub->add_option("--seed", args->seed, "random seed (same inputs and seed, same output bytes)")
       ->capture_default_str()
       ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <cstdint>
 
 namespace delcert::manifold {
 
@@ -12,8 +13,14 @@ Manifold::Manifold(io::ManifoldSpec spec) : spec_(std::move(spec)) {
   for (const auto& f : spec_.equations) {
     f_.emplace_back(f);
     std::vector<exact::DoublePolynomial> row;
-    for (int j = 0; j < N_; ++j) row.emplace_back(f.derivative(j));
+    std::vector<exact::DoublePolynomial> second(static_cast<std::size_t>(N_) * N_);
+    for (int j = 0; j < N_; ++j) {
+      const exact::Polynomial dj = f.derivative(j);
+      row.emplace_back(dj);
+      for (int l = j; l < N_; ++l) second[static_cast<std::size_t>(j) * N_ + l] = exact::DoublePolynomial(dj.derivative(l));
+    }
     df_.push_back(std::move(row));
+    d2f_.push_back(std::move(second));
   }
   if (spec_.selector) selector_.emplace(*spec_.selector);
 }
@@ -29,6 +36,78 @@ Eigen::MatrixXd Manifold::jacobian(std::span<const double> x) const {
   for (int i = 0; i < codimension(); ++i)
     for (int j = 0; j < N_; ++j) J(i, j) = df_[i][j](x);
   return J;
+}
+
+Eigen::MatrixXd Manifold::hessian(int i, std::span<const double> x) const {
+  Eigen::MatrixXd H(N_, N_);
+  for (int j = 0; j < N_; ++j)
+    for (int l = j; l < N_; ++l) H(j, l) = H(l, j) = d2f_[i][static_cast<std::size_t>(j) * N_ + l](x);
+  return H;
+}
+
+std::optional<double> Manifold::max_normal_curvature(std::span<const double> x) const {
+  const auto fr = frame(x);
+  if (!fr) return std::nullopt;
+  const int k = codimension();
+  const Eigen::MatrixXd J = jacobian(x);
+  const Eigen::MatrixXd JJt = J * J.transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> solve(JJt);
+  // Tᵀ H_i T for every i (m by m), and the map from normal coordinates a (ν = normal · a) to w.
+  std::vector<Eigen::MatrixXd> THT;
+  for (int i = 0; i < k; ++i) THT.push_back(fr->tangent.transpose() * hessian(i, x) * fr->tangent);
+  const Eigen::MatrixXd W = solve.solve(J * fr->normal);  // k by k: w = W a
+  auto curvature = [&](const Eigen::VectorXd& a) {
+    const Eigen::VectorXd w = W * (a / a.norm());
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m_, m_);
+    for (int i = 0; i < k; ++i) S -= w[i] * THT[i];
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S, Eigen::EigenvaluesOnly);
+    return es.eigenvalues().cwiseAbs().maxCoeff();
+  };
+  if (k == 1) return curvature(Eigen::VectorXd::Ones(1));
+  // Codimension > 1: the best of a deterministic set of normal directions (±a give the same value),
+  // then alternating ascent from it. For a fixed unit tangent u, <ν, II(u, u)> = -aᵀ Wᵀ h(u) with
+  // h_i = uᵀ (Tᵀ H_i T) u is linear in a, so |II(u, u)| = |Wᵀ h(u)|: take u the top eigenvector of
+  // S_ν, then a = Wᵀ h(u) / |Wᵀ h(u)|, and so on; each step can only raise the value.
+  Eigen::VectorXd best_a = Eigen::VectorXd::Unit(k, 0);
+  double best = curvature(best_a);
+  const int samples = k == 2 ? 64 : 256;
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;  // a fixed splitmix64 sequence: the same directions every call
+  auto uniform = [&state] {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
+  };
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXd a(k);
+    if (k == 2) {
+      const double t = M_PI * s / samples;
+      a << std::cos(t), std::sin(t);
+    } else {
+      for (int i = 0; i < k; ++i) a[i] = 2 * uniform() - 1;
+      if (!(a.norm() > 1e-3)) continue;
+    }
+    const double c = curvature(a);
+    if (c > best) best = c, best_a = a / a.norm();
+  }
+  Eigen::VectorXd a = best_a;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::VectorXd w = W * a;
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m_, m_);
+    for (int i = 0; i < k; ++i) S -= w[i] * THT[i];
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
+    Eigen::Index top = 0;
+    es.eigenvalues().cwiseAbs().maxCoeff(&top);
+    const Eigen::VectorXd u = es.eigenvectors().col(top);
+    Eigen::VectorXd h(k);
+    for (int i = 0; i < k; ++i) h[i] = u.dot(THT[i] * u);
+    const Eigen::VectorXd g = W.transpose() * h;
+    const double value = g.norm();
+    if (!(value > best * (1 + 1e-14))) break;
+    best = value;
+    a = g / value;
+  }
+  return best;
 }
 
 double Manifold::residual(std::span<const double> x) const { return evaluate(x).cwiseAbs().maxCoeff(); }

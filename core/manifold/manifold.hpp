@@ -47,6 +47,22 @@ class Manifold {
   // True when the spec has no selector or selector(x) > 0.
   bool on_selected_component(std::span<const double> x) const;
 
+  // The Hessian of F_i at x, N by N, from the spec's polynomial differentiated twice exactly (then
+  // evaluated in doubles; no finite differences).
+  Eigen::MatrixXd hessian(int i, std::span<const double> x) const;
+
+  // κ_max(x): the largest normal curvature of M at x, max over unit tangent u of |II(u, u)| with the
+  // second fundamental form II(u, v) = -J⁺ (uᵀ H_i v)_i, J⁺ = Jᵀ (J Jᵀ)⁻¹. For a unit normal ν,
+  // <ν, II(u, u)> = uᵀ S_ν u with the shape operator S_ν = -Σ_i w_i Tᵀ H_i T, w = (J Jᵀ)⁻¹ J ν (T an
+  // orthonormal tangent basis), so κ_max = max over unit ν of the largest |eigenvalue| of S_ν. In
+  // codimension 1 there is one ν (up to sign): κ_max is exact up to rounding. In codimension k > 1
+  // the max over ν is taken over a deterministic set of directions (k = 2: 64 on a half circle;
+  // k >= 3: 256 quasi-random ones), then raised by alternating ascent (u the top eigenvector of S_ν,
+  // ν along II(u, u)) to a local maximum: a lower ESTIMATE of κ_max, for the sizing field only
+  // (nothing downstream trusts it).
+  // nullopt where J_F(x) is rank deficient.
+  std::optional<double> max_normal_curvature(std::span<const double> x) const;
+
   // Orthonormal tangent and normal bases at p, from a full QR of J_F(p)^T.
   // Returns nullopt when J_F(p) is numerically rank deficient (p is not a regular point).
   std::optional<Frame> frame(std::span<const double> p) const;
@@ -67,6 +83,7 @@ class Manifold {
   int m_ = 0, N_ = 0;
   std::vector<exact::DoublePolynomial> f_;
   std::vector<std::vector<exact::DoublePolynomial>> df_;  // df_[i][j] = dF_i / dx_j
+  std::vector<std::vector<exact::DoublePolynomial>> d2f_;  // d2f_[i][j * N + l] = d²F_i / dx_j dx_l (j <= l)
   std::optional<exact::DoublePolynomial> selector_;
 };
 

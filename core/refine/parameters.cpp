@@ -130,4 +130,24 @@ Constants parse_constants(const ConstantTexts& a, int m) {
   return c;
 }
 
+const char* to_string(SizingKind k) { return k == SizingKind::curvature ? "curvature" : "uniform"; }
+
+void resolve_sizing(SizingField& s, const ExactParameter& eps) {
+  auto finite_positive = [](const mpq_class& q) {
+    const double d = q.get_d();
+    return q > 0 && std::isfinite(d) && d > 0;
+  };
+  if (!finite_positive(s.c.value)) throw ParameterError("--sizing-c", "must be a positive number (got " + s.c.text + ")");
+  if (!s.floor) {
+    mpq_class f = eps.value / kDefaultFloorDivisor;
+    f.canonicalize();
+    s.floor = ExactParameter(f);
+  }
+  if (!finite_positive(s.floor->value))
+    throw ParameterError("--eps-floor", "must be a positive number (got " + s.floor->text + ")");
+  if (s.floor->value > eps.value)
+    throw ParameterError("--eps-floor", "must not exceed --eps = " + eps.text + " (got " + s.floor->text +
+                                            "): eps is the field's cap, the floor its lower bound");
+}
+
 }  // namespace delcert::refine

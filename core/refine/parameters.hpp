@@ -91,6 +91,30 @@ ExactParameter parse_eps_option(const std::string& text);
 // default δ0, ε is checked as soon as it is read, the ranges of the others after all are read.
 Constants parse_constants(const ConstantTexts& texts, int m);
 
+// The sizing field (`delcert refine --sizing`): how the target ε varies over M.
+//   uniform    ε(x) = ε everywhere (the paper's; the default, output byte-identical to before).
+//   curvature  ε(x) = min(ε, max(floor, c / κ_max(x))), κ_max the largest normal curvature of M at
+//              x (Manifold::max_normal_curvature, from F's exact Hessians): ε is the cap where M is
+//              flat, floor bounds the work where it is sharply curved. Practical mode only.
+// c = 1/2 by default: a star cell of radius R < ε(x) <= 1/(2 κ_max) has its vertices within a
+// geodesic angle of about κ_max R <= 1/2 rad of the tangent plane at its centre, and a chord of
+// length ε(x) sags by about κ ε(x)^2 / 8 <= ε(x)/16 below M: the tangent planes of a star's
+// vertices stay within ~30 degrees of each other, where the tangential complex is still consistent
+// after the usual refinement (docs/refinement.md, "Sizing field"). The floor defaults to ε / 10.
+enum class SizingKind { uniform, curvature };
+const char* to_string(SizingKind k);
+
+struct SizingField {
+  SizingKind kind = SizingKind::uniform;
+  ExactParameter c{mpq_class(1, 2)};
+  std::optional<ExactParameter> floor;  // absent: ε / 10 (resolve_sizing)
+};
+// The default floor: ε / 10.
+inline constexpr int kDefaultFloorDivisor = 10;
+// Sets the floor to ε / 10 when absent; throws ParameterError (--sizing-c, --eps-floor) when c <= 0,
+// the floor <= 0 or above ε, or either not a positive finite double. Needs ε resolved.
+void resolve_sizing(SizingField& s, const ExactParameter& eps);
+
 // The decimal with two significant digits just above x (x > 0): 0.4712 -> 0.48 (the smallest such
 // decimal whose double exceeds x). The derived ε.
 mpq_class decimal_above(double x);

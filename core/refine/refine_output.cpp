@@ -59,6 +59,45 @@ const char* kPracticalRules[] = {
     "a round applies Rule 1 alone while big cells exist, otherwise every other configuration in canonical order "
     "(rule, point, cell, apex), skipping those whose Delaunay ball received a point earlier in the round"};
 
+// The decimal with `digits` significant digits at or above x > 0 (a safe rational upper bound of a
+// double: the margin 1e-9 covers the decimal conversion).
+mpq_class decimal_at_or_above(double x, int digits) {
+  const double y = x * (1 + 1e-9);
+  int e = static_cast<int>(std::floor(std::log10(y))) - (digits - 1);
+  const double scale = std::pow(10.0, e);
+  const long k = static_cast<long>(std::ceil(y / scale));
+  mpq_class q(k);
+  mpz_class p10;
+  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
+  if (e >= 0)
+    q *= p10;
+  else
+    q /= p10;
+  q.canonicalize();
+  return q;
+}
+
+bool curvature_sizing(const RefineResult& r) { return r.parameters.sizing.kind == SizingKind::curvature; }
+
+// ε_min, exact: ε / 2^eps_level, and under curvature sizing at most the field's smallest value
+// (three significant digits below it): every sparsity and protection decision used a local ε >= it.
+mpq_class exact_eps_min(const RefineResult& r) {
+  mpq_class eps_min = r.parameters.constants.eps.value().value;
+  if (r.eps_level > 0) {
+    mpz_class two_k;
+    mpz_ui_pow_ui(two_k.get_mpz_t(), 2, static_cast<unsigned long>(r.eps_level));
+    eps_min /= two_k;
+    eps_min.canonicalize();
+  }
+  if (curvature_sizing(r) && r.final.min_local_eps > 0) {
+    const mpq_class field_min = decimal_below(r.final.min_local_eps, 3);
+    if (field_min < eps_min) eps_min = field_min;
+  }
+  return eps_min;
+}
+
+const char* kPerPointFile = "eps.txt";
+
 }  // namespace
 
 ClaimsOutcome make_claims(const RefineResult& r) {
@@ -67,19 +106,32 @@ ClaimsOutcome make_claims(const RefineResult& r) {
   const Constants& k = r.parameters.constants;
   io::Claims claims;
   const mpq_class& eps = k.eps.value().value;
-  if (f.all_small)
+  if (curvature_sizing(r)) {
+    // Version 3: the star radius and the covering radius against ε(p), per point (eps.txt). ε(p)
+    // is written as the 6-digit decimal at or above the double the refiner used (at most ε): the
+    // refiner kept R_p(σ) < ε(p) with a relative margin, so the claim is the refiner's own.
+    // The covering claim is the refiner's expectation (each restricted Voronoi cell lies near the
+    // union of its star's Delaunay balls), not something it measured: the certifier decides it.
+    if (f.all_small_local) {
+      out.per_point.reserve(r.local_eps.size());
+      for (double e : r.local_eps) {
+        mpq_class q = decimal_at_or_above(e, 6);
+        out.per_point.push_back(q < eps ? q : eps);
+      }
+      claims.star_radius_per_point_file = kPerPointFile;
+      claims.covering_per_point_file = kPerPointFile;
+    } else {
+      out.omitted.emplace_back("star_radius_per_point", "some star simplex at p has R_p >= eps(p), or a star is not closed");
+    }
+  } else if (f.all_small) {
     claims.star_radius = eps;
-  else
+  } else {
     out.omitted.emplace_back("star_radius", "some star simplex has R_p >= eps, or a star is not closed");
-  // Sparsity and protection hold with the smallest local ε, ε / 2^eps_level (docs/refinement.md,
-  // "Local ε"); the star radius with ε itself, the largest local ε.
-  mpq_class eps_min = eps;
-  if (r.eps_level > 0) {
-    mpz_class two_k;
-    mpz_ui_pow_ui(two_k.get_mpz_t(), 2, static_cast<unsigned long>(r.eps_level));
-    eps_min /= two_k;
-    eps_min.canonicalize();
   }
+  // Sparsity and protection hold with the smallest local ε, ε / 2^eps_level (docs/refinement.md,
+  // "Local ε"), and the field's smallest value under curvature sizing; the star radius with ε
+  // itself, the largest local ε (uniform sizing).
+  const mpq_class eps_min = exact_eps_min(r);
   const mpq_class mu0eps = mu0_times(eps_min);
   if (f.min_distance > mu0eps.get_d() * (1 + 1e-9)) {
     claims.sparsity = mu0eps;
@@ -188,6 +240,21 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
     for (const char* s : kPracticalRules) pr.push_back(s);
     j["practical_rules"] = pr;
   }
+  if (curvature_sizing(r)) {
+    const SizingField& sz = p.sizing;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (double e : r.local_eps) lo = std::min(lo, e), hi = std::max(hi, e);
+    j["sizing"] = {{"kind", to_string(sz.kind)},
+                   {"statement", "eps(x) = min(eps, max(floor, c / kappa_max(x))), kappa_max the largest normal curvature "
+                                 "(from F's exact Hessians; an estimate in codimension > 1); the local eps sites below "
+                                 "can lower it further"},
+                   {"c", sz.c.text},
+                   {"floor", sz.floor ? sz.floor->text : std::string()},
+                   {"per_point_file", f.all_small_local ? kPerPointFile : ""},
+                   {"min_local_eps", number(lo)},
+                   {"max_local_eps", number(hi)},
+                   {"eps_min_claimed", exact_eps_min(r).get_str()}};
+  }
   {
     // The sizing field (practical mode): ε(x) = min(ε, min over sites of ε_site + slope |x - site|).
     mpz_class two_k;
@@ -214,7 +281,8 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
   j["time_seconds"] = {{"stars", r.star_seconds}, {"configurations", r.configuration_seconds}, {"total", r.total_seconds}};
   json remaining = json::object();
   for (Rule rule : kRules) remaining[to_string(rule)] = f.remaining[rule];
-  const double mu0eps = mu0_times(std::ldexp(dbl.eps, -r.eps_level));  // the smallest local ε
+  const double mu0eps = curvature_sizing(r) ? mu0_times(exact_eps_min(r).get_d())
+                                            : mu0_times(std::ldexp(dbl.eps, -r.eps_level));  // the smallest local ε
   j["final"] = {{"stars", f.stars},
                 {"star_cells", f.star_cells},
                 {"complex_simplices", f.complex_simplices},
@@ -258,11 +326,13 @@ void write_refine_output(const std::string& dir, const RefineResult& result, con
     throw io::InputError(dir, 0, "cannot create the output directory: " + (ec ? ec.message() : std::string("not a directory")));
   const fs::path d(dir);
   ClaimsOutcome claims = make_claims(result);
-  // All four or none (each first complete in a temporary file, then renamed).
-  io::write_files_atomically({{(d / "points.txt").string(), io::format_points(result.points)},
-                              {(d / "complex.txt").string(), io::format_complex(result.complex)},
-                              {(d / "claims.json").string(), claims.json},
-                              {(d / "report.json").string(), make_report(result, context, claims)}});
+  // All four (five with eps.txt) or none (each first complete in a temporary file, then renamed).
+  std::vector<std::pair<std::string, std::string>> files{{(d / "points.txt").string(), io::format_points(result.points)},
+                                                         {(d / "complex.txt").string(), io::format_complex(result.complex)}};
+  if (!claims.per_point.empty()) files.emplace_back((d / kPerPointFile).string(), io::format_per_point(claims.per_point));
+  files.emplace_back((d / "claims.json").string(), claims.json);
+  files.emplace_back((d / "report.json").string(), make_report(result, context, claims));
+  io::write_files_atomically(files);
 }
 
 }  // namespace delcert::refine

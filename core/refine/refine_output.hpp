@@ -12,10 +12,14 @@
 //                     that                                              (when the margin says so)
 // ε_min = ε / 2^eps_level is the smallest local ε of the practical mode (ε without local sites;
 // docs/refinement.md, "Local ε"); the star radius is claimed with ε, the largest.
+// Under --sizing curvature, claims.json is "delcert-claims v3": instead of "star_radius" it names
+// DIR/eps.txt in "star_radius_per_point" and "covering_per_point", ε(p) per point (io/claims.hpp).
 // A claim that does not hold is left out and report.json says why. points.txt, complex.txt and
 // claims.json are byte-identical for the same inputs and seed; report.json differs only in its
 // "seconds" fields.
 #pragma once
+
+#include <gmpxx.h>
 
 #include <string>
 #include <utility>
@@ -33,6 +37,7 @@ struct OutputContext {
 
 struct ClaimsOutcome {
   std::string json;  // the claims.json text
+  std::vector<mpq_class> per_point;  // eps.txt's values (curvature sizing, when claimed), else empty
   std::vector<std::pair<std::string, std::string>> omitted;  // (claim, why)
 };
 

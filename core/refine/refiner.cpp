@@ -125,6 +125,10 @@ class Refiner {
     resolve_delta0(P_.constants, m_);
     refine::validate(P_.constants);
     paper_ = P_.mode == RefineMode::paper;
+    curvature_ = P_.sizing.kind == SizingKind::curvature;
+    // The paper's Algorithm 1 has one ε; the local ε machinery the field rides on is the practical mode's.
+    if (curvature_ && paper_)
+      throw ParameterError("--sizing", "curvature sizing needs --mode practical (the paper's Algorithm 1 uses one eps)");
     if (P_.max_points == 0) P_.max_points = kDefaultMaxPoints;
     // Paper mode keeps the former default caps; in practical mode 0 is no cap of that kind (the
     // points cap bounds everything, as every round inserts a point).
@@ -159,6 +163,8 @@ class Refiner {
     return radius2 >= leps_[p] * leps_[p] * (1 - 2 * kMargin);
   }
   double local_eps_at(std::span<const double> x) const;
+  // The sizing field before any site: ε (uniform) or min(ε, max(floor, c / κ_max(x))) (curvature).
+  double field_eps(std::span<const double> x) const;
   void add_eps_site(const Configuration& c, int level);
   std::optional<Eigen::VectorXd> shrink(const Configuration& c, RuleStats& st);
   Eigen::VectorXd open_direction(std::size_t p, const manifold::Frame& frame);
@@ -183,7 +189,9 @@ class Refiner {
   ConstantsAsDoubles d_;  // of P_.constants, once ε is set (setup_eps)
   int m_, N_;
   bool paper_ = false;
+  bool curvature_ = false;
   double eps2_ = 0, mu0_eps_ = 0;
+  double sizing_c_ = 0, sizing_floor_ = 0;  // the curvature field's c and floor, as doubles
   RefineResult R_;
   std::optional<sampling::Random> rng_;
   tangential::TangentPlanes planes_;
@@ -229,6 +237,19 @@ void Refiner::setup_eps() {
   d_ = as_doubles(P_.constants);
   eps2_ = d_.eps * d_.eps;
   mu0_eps_ = mu0_times(d_.eps);
+  if (curvature_) {
+    resolve_sizing(P_.sizing, *P_.constants.eps);
+    sizing_c_ = P_.sizing.c.value.get_d();
+    sizing_floor_ = P_.sizing.floor->value.get_d();
+  }
+}
+
+double Refiner::field_eps(std::span<const double> x) const {
+  if (!curvature_) return d_.eps;
+  const auto kappa = M_.max_normal_curvature(x);
+  if (!kappa) return sizing_floor_;  // not a regular point: the finest the field allows
+  // c / κ in double: κ = 0 (flat) gives +inf, capped by ε.
+  return std::min(d_.eps, std::max(sizing_floor_, sizing_c_ / *kappa));
 }
 
 std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
@@ -494,7 +515,7 @@ bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {
 }
 
 double Refiner::local_eps_at(std::span<const double> x) const {
-  double e = d_.eps;
+  double e = field_eps(x);
   for (const Site& s : sites_) e = std::min(e, s.eps + kSizingSlope * std::sqrt(spatial::squared_distance(x, s.x)));
   return e;
 }
@@ -655,7 +676,8 @@ RefineResult Refiner::run() {
     R_.star_seconds += seconds_since(t);
   }
   setup_eps();
-  leps_.assign(R_.points.size(), d_.eps);
+  leps_.resize(R_.points.size());
+  for (std::size_t p = 0; p < leps_.size(); ++p) leps_[p] = field_eps(R_.points.point(p));
   {
     HypothesesInput hi;
     hi.m = m_;
@@ -821,7 +843,11 @@ void Refiner::measure() {
   f.remaining = pending();
   f.remaining[Rule::inconsistent] = assembly.inconsistent.size();
   const int k = m_ + 1;
-  const double mu0_min = mu0_times(std::ldexp(d_.eps, -R_.eps_level));  // the smallest local ε
+  f.min_local_eps = leps_.empty() ? d_.eps : *std::min_element(leps_.begin(), leps_.end());
+  // The smallest local ε: ε / 2^eps_level (the sites), and the field's minimum under curvature sizing.
+  const double eps_min = curvature_ ? std::min(std::ldexp(d_.eps, -R_.eps_level), f.min_local_eps)
+                                    : std::ldexp(d_.eps, -R_.eps_level);
+  const double mu0_min = mu0_times(eps_min);
   const double dcheck2 = d_.delta0 * d_.delta0 * mu0_min * mu0_min;
   std::set<CellKey> inconsistent;
   for (const auto& s : assembly.inconsistent) inconsistent.insert(make_key(s));
@@ -829,6 +855,7 @@ void Refiner::measure() {
   f.min_face_thickness_ratio = std::numeric_limits<double>::infinity();
   f.min_protection = std::numeric_limits<double>::infinity();
   double max_r2 = 0;
+  bool small_local = true;
   const spatial::NeighbourIndex& nidx = tc_.index();
   std::vector<std::pair<double, std::size_t>> nn;
   for (std::size_t p = 0; p < tc_.size(); ++p) {
@@ -839,6 +866,7 @@ void Refiner::measure() {
       const auto cell = st.cell(c);
       if (!inconsistent.empty() && inconsistent.count(make_key(cell))) inc = true;
       max_r2 = std::max(max_r2, st.radii2[c]);
+      if (!(st.radii2[c] < leps_[p] * leps_[p] * (1 - 2 * kMargin))) small_local = false;
       auto g = make_simplex(R_.points, cell);
       f.min_thickness = std::min(f.min_thickness, g.thickness());
       f.min_face_thickness_ratio = std::min(f.min_face_thickness_ratio, g.goodness_ratio(d_.gamma0));
@@ -881,6 +909,7 @@ void Refiner::measure() {
   f.consistent = f.inconsistent_simplices == 0 && f.open_stars == 0;
   f.all_good = std::isinf(f.min_face_thickness_ratio) || f.min_face_thickness_ratio >= 1;
   f.all_small = f.max_radius < d_.eps * (1 - kMargin) && f.open_stars == 0;
+  f.all_small_local = small_local && f.open_stars == 0;
   f.protected_claim = f.min_protection > dcheck2 * (1 + kMargin);
 }
 

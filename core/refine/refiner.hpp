@@ -58,6 +58,9 @@ struct RefineProgress {
 struct RefineParameters {
   RefineMode mode = RefineMode::practical;
   Constants constants;  // ε, Γ0, α, β, δ0, exact
+  // The sizing field (parameters.hpp): uniform (the default) or curvature (practical mode only);
+  // ε above is its cap. RefineResult::parameters holds it resolved (the floor set).
+  SizingField sizing;
   std::uint64_t seed = 1;
   int threads = 1;
   // Caps: the run stops (not converged) when it would hold more than max_points points in all
@@ -115,6 +118,8 @@ struct FinalMeasures {
   double input_min_distance = 0;              // the same over the input points
   double min_inserted_distance = 0;           // smallest distance of an inserted point to the points before it
   bool consistent = false, all_good = false, all_small = false, protected_claim = false;
+  bool all_small_local = false;               // every star cell at p has R_p(σ) < ε(p) (= all_small when uniform)
+  double min_local_eps = 0;                   // min over points of ε(p) at the end
 };
 
 struct RefineResult {

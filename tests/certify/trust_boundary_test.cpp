@@ -160,8 +160,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // proofs and identities and ~150 the quadratic enclosures and combined signs; certify/detail/
   // cell_checks.* shares the vertex re-check and the purity test with rvd.cpp, ~40 net;
   // verify_declared_shape shared by Del_M and Del_RM, ~20) took SO(3)'s Del_RM from about an hour
-  // to 3 s and the total to 8525: 8550.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8550) << "certify/ should stay small enough to read whole";
+  // to 3 s and the total to ~8550. Per-point claims (issue 15 item 2, claims v3: checks 10 and 11
+  // against eps(p) with their witnesses, the count check, the files' hashes and the re-analysis of
+  // cells whose bound the shared covering target left loose, ~120 lines in certify.cpp) took it to
+  // 8667: 8690.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8690) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

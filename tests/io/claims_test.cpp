@@ -6,6 +6,8 @@
 #include "io/input_error.hpp"
 #include "tests/test_support.hpp"
 
+#include <fstream>
+
 namespace delcert::io {
 namespace {
 
@@ -48,7 +50,7 @@ TEST(Claims, Version2RefusesTheAmbiguousEps) {
 TEST(Claims, RefusesMalformedInput) {
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": 0.1}", 2, "exact rational");
   expect_error("{\"format\": \"delcert-claims v1\",\n\n \"protection\": \"1\"}", 3, "unknown claim");
-  expect_error("{\"format\": \"delcert-claims v3\"}", 1, "versions 1 and 2");
+  expect_error("{\"format\": \"delcert-claims v4\"}", 1, "versions 1, 2 and 3");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"sparsity\": \"-1\"}", 2, "non-negative");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"gamma0\": \"1.5\"}", 2, "(0, 1]");
   expect_error("{\"format\": \"delcert-claims v1\",\n \"eps\": \"0\"}", 2, "positive");
@@ -140,6 +142,60 @@ TEST(Claims, SecureIsABoolean) {
   Claims c;
   c.secure = true;
   EXPECT_EQ(format_claims(c), "{\n  \"format\": \"delcert-claims v2\",\n  \"secure\": true\n}\n");
+}
+
+// Version 3: per-point bounds in a file next to claims.json, one exact rational per point.
+void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+TEST(Claims, Version3ReadsPerPointFiles) {
+  test::TempDir dir("claims-v3");
+  write(dir.file("eps.txt"), "# comment\n0.5\n1/4\n\n3e-1\n");
+  const std::string text = R"({"format": "delcert-claims v3", "star_radius_per_point": "eps.txt",
+                              "covering_per_point": "eps.txt", "sparsity": "0.01"})";
+  const Claims c = parse_claims(text, dir.file("claims.json"));
+  ASSERT_EQ(c.star_radius_per_point.size(), 3u);
+  EXPECT_EQ(c.star_radius_per_point[1], mpq_class(1, 4));
+  EXPECT_EQ(c.star_radius_per_point[2], mpq_class(3, 10));
+  EXPECT_EQ(c.covering_per_point, c.star_radius_per_point);
+  EXPECT_EQ(c.star_radius_per_point_file, "eps.txt");
+  EXPECT_FALSE(c.star_radius);
+  EXPECT_TRUE(c.any());
+  // Written back: version 3, the file names after "covering"; the values by format_per_point.
+  const std::string out = format_claims(c);
+  EXPECT_NE(out.find("\"delcert-claims v3\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"star_radius_per_point\": \"eps.txt\""), std::string::npos) << out;
+  EXPECT_EQ(parse_per_point(format_per_point(c.star_radius_per_point), "x"), c.star_radius_per_point);
+  // Without a per-point claim the writer stays at version 2 (byte-identical to before).
+  Claims v2;
+  v2.star_radius = mpq_class(1, 2);
+  EXPECT_EQ(format_claims(v2), "{\n  \"format\": \"delcert-claims v2\",\n  \"star_radius\": \"0.5\"\n}\n");
+}
+
+TEST(Claims, Version3RefusesBadPerPointInput) {
+  test::TempDir dir("claims-v3-bad");
+  const std::string claims = dir.file("claims.json");
+  write(dir.file("bad.txt"), "0.5\n0.1 0.2\n");
+  write(dir.file("zero.txt"), "0.5\n\n0\n");
+  write(dir.file("ok.txt"), "0.5\n");
+  auto expect = [&](const std::string& text, const std::string& file, long line, const std::string& fragment) {
+    try {
+      parse_claims(text, claims);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file) << e.what();
+      EXPECT_EQ(e.line(), line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect(R"({"format": "delcert-claims v3", "star_radius_per_point": "bad.txt"})", dir.file("bad.txt"), 2, "point 1");
+  expect(R"({"format": "delcert-claims v3", "covering_per_point": "zero.txt"})", dir.file("zero.txt"), 3, "positive");
+  expect(R"({"format": "delcert-claims v3", "covering_per_point": "missing.txt"})", dir.file("missing.txt"), 0, "");
+  expect(R"({"format": "delcert-claims v3", "star_radius_per_point": 3})", claims, 1, "must name a file");
+  expect("{\"format\": \"delcert-claims v3\",\n \"star_radius\": \"1\",\n \"star_radius_per_point\": \"ok.txt\"}", claims, 3,
+         "not both");
+  // Version 2 does not know the per-point claims: unknown keys stay an error.
+  expect("{\"format\": \"delcert-claims v2\",\n \"star_radius_per_point\": \"ok.txt\"}", claims, 2, "unknown claim");
+  expect("{\"format\": \"delcert-claims v3\",\n \"star_radius_per_pont\": \"ok.txt\"}", claims, 2, "unknown claim");
 }
 
 }  // namespace
