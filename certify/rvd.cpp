@@ -134,12 +134,7 @@ class CellAnalysis {
     root.U.assign(m_, Interval{-rho_u_, rho_u_});
     for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
     subdivide({root});
-    exact::UpwardRounding up;
-    for (const auto& v : report_.vertices) {
-      IA d(0);
-      for (int i = 0; i < N_; ++i) d += exact::square(ia(v.x[i]) - IA(points_.point(p_)[i]));
-      refine_below_ = std::max(refine_below_, exact::sqrt(d).inf());
-    }
+    refine_below_ = std::max(refine_below_, detail::farthest_vertex(report_, points_, p_));
     return refine_below_;
   }
 
@@ -699,38 +694,8 @@ class CellAnalysis {
     return detail::others_strictly_farther(points_, grid_, p_, simplex, X);
   }
 
-  // Sort the vertices; a root on a face shared by two boxes is found twice: of overlapping
-  // enclosures of the same simplex keep the first (each holds a genuine vertex; for Del_RM only
-  // the simplex matters, and two distinct vertices of one simplex this close are not told apart).
-  void finish() {
-    auto& V = report_.vertices;
-    std::sort(V.begin(), V.end(), [](const auto& x, const auto& y) {
-      if (x.simplex != y.simplex) return x.simplex < y.simplex;
-      for (std::size_t i = 0; i < x.x.size(); ++i)
-        if (x.x[i].lo != y.x[i].lo) return x.x[i].lo < y.x[i].lo;
-      return false;
-    });
-    std::vector<RestrictedVoronoiVertex> out;
-    for (auto& v : V) {
-      auto same = [&](const RestrictedVoronoiVertex& o) {  // the same simplex, overlapping enclosures
-        for (std::size_t i = 0; i < v.x.size(); ++i)
-          if (o.x[i].hi < v.x[i].lo || v.x[i].hi < o.x[i].lo) return false;
-        return o.simplex == v.simplex;
-      };
-      if (std::none_of(out.begin(), out.end(), same)) out.push_back(std::move(v));
-    }
-    V = std::move(out);
-    std::sort(report_.face_points.begin(), report_.face_points.end(),
-              [](const auto& x, const auto& y) { return x.simplex < y.simplex; });
-    if (V.empty() && report_.face_points.empty() && report_.kept > 0)
-      report_.unresolved_faces.push_back({report_.covering_location, {p_},
-                                          "the cell of p may hold points of M but has no restricted Voronoi vertex"});
-    if (!report_.undecided.empty())
-      report_.reason = std::to_string(report_.undecided.size()) + " undecided boxes";
-    else if (!(report_.covering_bound < r_))
-      report_.reason = "cell reaches the chart boundary";
-    report_.complete = report_.reason.empty();
-  }
+  // Sorted, deduplicated, complete or not (certify/detail/cell_checks.hpp).
+  void finish() { detail::finish_report(report_, p_, r_); }
 
   const io::PointSet& points_;
   const detail::PointGrid& grid_;

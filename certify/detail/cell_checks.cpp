@@ -1,6 +1,7 @@
 #include "certify/detail/cell_checks.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include "exact/interval_arithmetic.hpp"
 
@@ -50,6 +51,48 @@ bool faces_known(int p, int m, const std::vector<int>& S, const std::vector<Rest
       }
     }
   return true;
+}
+
+double farthest_vertex(const RestrictedCellReport& report, const io::PointSet& points, int p) {
+  using IA = exact::IntervalNumber;
+  exact::UpwardRounding up;
+  double far = 0;
+  for (const auto& v : report.vertices) {
+    IA d(0);
+    for (std::size_t i = 0; i < v.x.size(); ++i) d += exact::square(exact::to_interval_number(v.x[i]) - IA(points.point(p)[i]));
+    far = std::max(far, exact::sqrt(d).inf());
+  }
+  return far;
+}
+
+void finish_report(RestrictedCellReport& report, int p, double r) {
+  auto& V = report.vertices;
+  std::sort(V.begin(), V.end(), [](const auto& x, const auto& y) {
+    if (x.simplex != y.simplex) return x.simplex < y.simplex;
+    for (std::size_t i = 0; i < x.x.size(); ++i)
+      if (x.x[i].lo != y.x[i].lo) return x.x[i].lo < y.x[i].lo;
+    return false;
+  });
+  std::vector<RestrictedVoronoiVertex> out;
+  for (auto& v : V) {
+    auto same = [&](const RestrictedVoronoiVertex& o) {  // the same simplex, overlapping enclosures
+      for (std::size_t i = 0; i < v.x.size(); ++i)
+        if (o.x[i].hi < v.x[i].lo || v.x[i].hi < o.x[i].lo) return false;
+      return o.simplex == v.simplex;
+    };
+    if (std::none_of(out.begin(), out.end(), same)) out.push_back(std::move(v));
+  }
+  V = std::move(out);
+  std::sort(report.face_points.begin(), report.face_points.end(),
+            [](const auto& x, const auto& y) { return x.simplex < y.simplex; });
+  if (V.empty() && report.face_points.empty() && report.kept > 0)
+    report.unresolved_faces.push_back({report.covering_location, {p},
+                                       "the cell of p may hold points of M but has no restricted Voronoi vertex"});
+  if (!report.undecided.empty())
+    report.reason = std::to_string(report.undecided.size()) + " undecided boxes";
+  else if (!(report.covering_bound < r))
+    report.reason = "cell reaches the chart boundary";
+  report.complete = report.reason.empty();
 }
 
 }  // namespace delcert::certify::detail

@@ -26,4 +26,16 @@ bool others_strictly_farther(const io::PointSet& points, const PointGrid& grid, 
 bool faces_known(int p, int m, const std::vector<int>& S, const std::vector<RestrictedVoronoiVertex>& vertices,
                  const std::vector<RestrictedVoronoiVertex>& face_points, std::vector<int>& face);
 
+// The largest certified lower bound of |x - p| over the report's vertices x (a lower bound of
+// max_{x in M} d(x, P): each vertex is a point of M at that distance from its nearest points), 0
+// when there are none.
+double farthest_vertex(const RestrictedCellReport& report, const io::PointSet& points, int p);
+
+// Ends a cell's report: vertices sorted by simplex (and enclosure), overlapping enclosures of one
+// simplex kept once (a root on a face shared by two boxes is found twice; each holds a genuine
+// vertex, and for Del_RM only the simplex matters), face points sorted, a cell with kept boxes but
+// no vertex nor face point listed as possibly impure, and `reason` / `complete` set: complete
+// when no box is undecided and the covering bound is below the ball's radius r.
+void finish_report(RestrictedCellReport& report, int p, double r);
+
 }  // namespace delcert::certify::detail
