@@ -23,13 +23,14 @@ json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 // A cap, null when there is none.
 json cap(std::size_t n) { return n == std::numeric_limits<std::size_t>::max() ? json(nullptr) : json(n); }
 
-// A decimal with `digits` significant digits strictly below x > 0 (a safe rational lower bound
-// of a double that was itself rounded: the margin 1e-9 covers it).
-mpq_class decimal_below(double x, int digits) {
-  const double y = x * (1 - 1e-9);
+// The decimal with `digits` significant digits strictly below x > 0 (up = false: a safe rational
+// lower bound of a double that was itself rounded), or at or above it (up = true: a safe upper
+// bound); the relative margin 1e-9 covers the decimal conversion.
+mpq_class decimal_rounded(double x, int digits, bool up) {
+  const double y = x * (up ? 1 + 1e-9 : 1 - 1e-9);
   int e = static_cast<int>(std::floor(std::log10(y))) - (digits - 1);
   const double scale = std::pow(10.0, e);
-  long k = static_cast<long>(std::floor(y / scale));
+  const long k = static_cast<long>(up ? std::ceil(y / scale) : std::floor(y / scale));
   if (k <= 0) return mpq_class(0);
   mpq_class q(k);
   mpz_class p10;
@@ -41,6 +42,7 @@ mpq_class decimal_below(double x, int digits) {
   q.canonicalize();
   return q;
 }
+mpq_class decimal_below(double x, int digits) { return decimal_rounded(x, digits, false); }
 
 const char* kPracticalRules[] = {
     "unprotected: a Gamma0-good (m+1)-simplex q*s in cosph(p) leaves s unprotected; the paper shows none exist under "
@@ -59,23 +61,7 @@ const char* kPracticalRules[] = {
     "a round applies Rule 1 alone while big cells exist, otherwise every other configuration in canonical order "
     "(rule, point, cell, apex), skipping those whose Delaunay ball received a point earlier in the round"};
 
-// The decimal with `digits` significant digits at or above x > 0 (a safe rational upper bound of a
-// double: the margin 1e-9 covers the decimal conversion).
-mpq_class decimal_at_or_above(double x, int digits) {
-  const double y = x * (1 + 1e-9);
-  int e = static_cast<int>(std::floor(std::log10(y))) - (digits - 1);
-  const double scale = std::pow(10.0, e);
-  const long k = static_cast<long>(std::ceil(y / scale));
-  mpq_class q(k);
-  mpz_class p10;
-  mpz_ui_pow_ui(p10.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
-  if (e >= 0)
-    q *= p10;
-  else
-    q /= p10;
-  q.canonicalize();
-  return q;
-}
+mpq_class decimal_at_or_above(double x, int digits) { return decimal_rounded(x, digits, true); }
 
 bool curvature_sizing(const RefineResult& r) { return r.parameters.sizing.kind == SizingKind::curvature; }
 
