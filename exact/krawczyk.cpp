@@ -218,6 +218,34 @@ ParametricSystem ParametricSystem::from_enclosures(std::vector<EnclosedPolynomia
   return ParametricSystem(std::move(impl));
 }
 
+struct EnclosedRow::Impl {
+  PreparedPtr f;
+  std::vector<PreparedPtr> df;  // d f / d x_j
+};
+
+EnclosedRow::EnclosedRow(EnclosedPolynomial equation) {
+  auto impl = std::make_shared<Impl>();
+  for (int j = 0; j < equation.num_variables(); ++j) impl->df.push_back(prepare_enclosed(equation.derivative(j)));
+  impl->f = prepare_enclosed(std::move(equation));
+  impl_ = std::move(impl);
+}
+
+ParametricSystem ParametricSystem::from_rows(std::span<const EnclosedRow> rows) {
+  const int n = static_cast<int>(rows.size());
+  if (n < 1) throw std::invalid_argument("a parametric system needs at least one equation");
+  auto impl = std::make_shared<SquareSystem::Impl>();
+  impl->n = n;
+  impl->m = 0;
+  for (int i = 0; i < n; ++i) {
+    if (static_cast<int>(rows[i].impl_->df.size()) != n)
+      throw std::invalid_argument("parametric system: equation " + std::to_string(i + 1) + " has " +
+                                  std::to_string(rows[i].impl_->df.size()) + " variables, expected " + std::to_string(n));
+    impl->f.push_back(rows[i].impl_->f);
+    for (int j = 0; j < n; ++j) impl->df.push_back(rows[i].impl_->df[j]);
+  }
+  return ParametricSystem(std::move(impl));
+}
+
 ParametricSystem::ParametricSystem(std::vector<Polynomial> equations, int num_parameters)
     : impl_(make_system(std::move(equations), num_parameters, "parametric system")) {}
 

@@ -98,6 +98,19 @@ class SquareSystem {
   std::shared_ptr<const Impl> impl_;
 };
 
+// One equation known by coefficient enclosures, in n variables and no parameters, with its n
+// derivatives prepared once: systems that share equations (ParametricSystem::from_rows) then
+// share their preparation. Immutable, cheap to copy, thread-safe to share.
+class EnclosedRow {
+ public:
+  explicit EnclosedRow(EnclosedPolynomial equation);
+  struct Impl;
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+  friend class ParametricSystem;
+};
+
 // n polynomials in m + n variables: variables 1..m are the parameters u, m+1..m+n the unknowns
 // x, with the exact partial derivatives in both. Immutable, cheap to copy, thread-safe to share.
 class ParametricSystem {
@@ -109,6 +122,9 @@ class ParametricSystem {
   // SquareSystem::with_enclosed_rows (their derivatives are enclosed the same way). equations()
   // then throws std::logic_error. Throws std::invalid_argument as the constructor.
   static ParametricSystem from_enclosures(std::vector<EnclosedPolynomial> equations, int num_parameters);
+  // from_enclosures(equations of the rows, 0), without preparing the rows again. Throws
+  // std::invalid_argument as the constructor (n rows, each in n variables).
+  static ParametricSystem from_rows(std::span<const EnclosedRow> rows);
   int size() const;            // n
   int num_parameters() const;  // m
   std::vector<Polynomial> equations() const;

@@ -117,6 +117,52 @@ std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<cons
   return C;
 }
 
+// The circle chart per pair of coordinates (param_cell.hpp, PRODUCT OF CIRCLES).
+std::optional<TorusChart> circle_charts(const io::ShapeSpec& g, std::span<const double> p, double r) {
+  const int m = static_cast<int>(g.radii.size());
+  if (static_cast<int>(p.size()) != 2 * m || m > 3) return std::nullopt;
+  TorusChart C;
+  for (int i = 0; i < m; ++i) {
+    const double u0 = p[2 * i], u1 = p[2 * i + 1], len = std::hypot(u0, u1);
+    if (!(len > 0) || !std::isfinite(len)) return std::nullopt;
+    const int k = std::abs(u1) > std::abs(u0) ? 1 : 0, sk = (k ? u1 : u0) < 0 ? -1 : 1;
+    // n: the inverse stereographic image (pole -sk e_k) of w = u_j / (1 + sk u_k), exactly unit.
+    const mpq_class w = dyadic((k ? u0 : u1) / len / (1 + sk * (k ? u1 : u0) / len)), W = w * w;
+    std::array<mpq_class, 2> n;
+    n[k] = sk * (1 - W) / (1 + W), n[1 - k] = 2 * w / (1 + W);
+    if (n[0] * n[0] + n[1] * n[1] != 1) throw std::logic_error("restricted cell: the circle chart's direction is not a unit vector");
+    exact::UpwardRounding up;
+    const std::vector<mpq_class> apex{g.radii[i] * n[0], g.radii[i] * n[1]};
+    const double t = half_width(IA(r) + distance_to(p.subspan(2 * i, 2), apex), IA(2) * ia(exact::enclose(g.radii[i])));
+    if (!(t > 0)) return std::nullopt;
+    C.r.push_back(g.radii[i]), C.n.push_back(n), C.t.push_back(t);
+  }
+  return C;
+}
+
+// The same chart as one RationalChart (tests): X_{2i+j} = r_i ((1 - v_i^2) n_ij + 2 v_i n'_ij)
+// prod_{l != i} (1 + v_l^2), D = prod_l (1 + v_l^2), t the largest half-width.
+RationalChart torus_rational_chart(const TorusChart& T) {
+  const int m = static_cast<int>(T.r.size());
+  const Polynomial one = Polynomial::constant(1, m);
+  RationalChart C;
+  C.D = one;
+  for (int l = 0; l < m; ++l) C.D = C.D * (one + Polynomial::variable(l, m) * Polynomial::variable(l, m));
+  for (int i = 0; i < m; ++i) {
+    Polynomial rest = one;
+    for (int l = 0; l < m; ++l)
+      if (l != i) rest = rest * (one + Polynomial::variable(l, m) * Polynomial::variable(l, m));
+    const Polynomial v = Polynomial::variable(i, m), v2 = v * v;
+    const std::array<mpq_class, 2> np{-T.n[i][1], T.n[i][0]};
+    for (int j = 0; j < 2; ++j)
+      C.X.push_back(((one - v2).scaled(T.r[i] * T.n[i][j]) + v.scaled(2 * T.r[i] * np[j])) * rest);
+  }
+  C.t = *std::max_element(T.t.begin(), T.t.end());
+  C.centre.assign(2 * m, mpq_class(0));
+  for (const auto& r : T.r) C.radius2 += r * r;
+  return C;
+}
+
 // B(E_ij) for the nine matrix units: R(y)_ij = y^T B(E_ij) y.
 const std::array<Mat4, 9>& davenport_units() {
   static const std::array<Mat4, 9> units = [] {
@@ -223,8 +269,28 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
   return C;
 }
 
-// A polynomial of degree <= 2 in m <= 3 variables (every chart here: X, D and so each P_q are
-// quadratic), known by coefficient enclosures: P(v) = a + sum_i b_i v_i + sum_i G_i v_i^2 +
+// A box V as its centre c (point intervals of the midpoints) and W = V - c, enclosed.
+struct Centred {
+  std::array<IA, 3> c, W;
+  explicit Centred(const Box& V) {
+    exact::UpwardRounding up;
+    for (std::size_t i = 0; i < V.size(); ++i) {
+      const double mid = V[i].midpoint();
+      c[i] = IA(mid);
+      W[i] = IA((IA(V[i].lo) - c[i]).inf(), (IA(V[i].hi) - c[i]).sup());
+    }
+  }
+};
+
+// A candidate's model near a box's centre, in double from the lower ends of its coefficient
+// enclosures: value f, slopes g, second-order coefficients G (v_i^2) and C (v_i v_j, pairs (0,1),
+// (0,2), (1,2)). Only to choose combinations and skip hopeless ones: never a decision.
+struct Local {
+  double f = 0, g[3] = {0, 0, 0}, G[3] = {0, 0, 0}, C[3] = {0, 0, 0};
+};
+
+// A polynomial of degree <= 2 in m <= 3 variables (the sphere and SO(3) charts: X, D and so each
+// P_q are quadratic), known by coefficient enclosures: P(v) = a + sum_i b_i v_i + sum_i G_i v_i^2 +
 // sum_{i<j} C_ij v_i v_j. Over a box V with centre c (doubles) and v = c + w, w in W = V - c:
 //   P(c + w) = P(c) + sum_i g_i w_i + sum_i G_i w_i^2 + sum_{i<j} C_ij w_i w_j,
 //   g_i = dP/dv_i (c) = b_i + 2 G_i c_i + sum_{j != i} C_ij c_j,
@@ -232,6 +298,7 @@ std::optional<RationalChart> so3_chart(std::span<const double> p, double r) {
 // (w_i^2 by exact::square: tight at 0) encloses the range of P on V for every polynomial the
 // enclosures stand for. Second order exact: much tighter than the natural extension on wide boxes.
 struct Quadratic {
+  using Frame = Centred;
   IA a{0};
   std::array<IA, 3> b{IA(0), IA(0), IA(0)}, G{IA(0), IA(0), IA(0)}, C{IA(0), IA(0), IA(0)};  // C: (0,1), (0,2), (1,2)
   int m = 0;
@@ -270,6 +337,15 @@ struct Quadratic {
       if (pair[k][1] < m) v += C[k] * (W[pair[k][0]] * W[pair[k][1]]);
     return v;
   }
+  IA range(const Centred& B) const { return range(B.c.data(), B.W.data()); }
+  Local local(const double* c) const {
+    Local l;
+    l.f = a.inf();
+    for (int i = 0; i < m; ++i) l.f += (b[i].inf() + G[i].inf() * c[i]) * c[i], l.g[i] = slope(i, c), l.G[i] = G[i].inf();
+    for (int k = 0; k < 3; ++k)
+      if (pair[k][1] < m) l.f += C[k].inf() * c[pair[k][0]] * c[pair[k][1]], l.C[k] = C[k].inf();
+    return l;
+  }
   // This + t B (interval coefficients). Under upward rounding.
   void add(const Quadratic& B, const IA& T) {
     a += T * B.a;
@@ -296,16 +372,73 @@ struct Quadratic {
   }
 };
 
-// A box V as its centre c (point intervals of the midpoints) and W = V - c, enclosed.
-struct Centred {
-  std::array<IA, 3> c, W;
-  explicit Centred(const Box& V) {
+// A SEPARABLE function of v in R^m (m <= 3): k + sum_i U(a_i, b_i; v_i), with the univariate
+// U(a, b; t) = (a t^2 + b t) / (1 + t^2), known by enclosures of k, a_i, b_i. On a product of
+// circles every sign, distance and coordinate of the chart is one (TorusModel below).
+// RANGE of U over an interval T, for every (a, b) in their enclosures: U' = N / (1 + t^2)^2 with
+// N(t) = b (1 - t^2) + 2 a t. If the enclosure of N over T is >= 0, U is non-decreasing on T and
+// its range is [U(inf T), U(sup T)], each end enclosed at a point; <= 0 likewise. Otherwise the
+// mean value form U(c) + U'(T) (T - c), intersected with |U - a/2| <= sqrt(a^2 + b^2) / 2 (with
+// t = tan(theta / 2), U = a/2 - (a/2) cos theta + (b/2) sin theta). Under upward rounding.
+// Everything U needs of one axis of a box, the same for every candidate (no division left per
+// candidate): with q(t) = 1 + t^2, U(t) = a t^2 / q + b t / q at the ends lo, hi of T and at the
+// centre c; N = b (1 - T^2) + a (2 T); and W / q(T)^2 for the mean value form.
+struct AxisFrame {
+  IA sq_lo, lin_lo, sq_hi, lin_hi, sq_c, lin_c, one_minus, two_t, slope_scale, W;
+  AxisFrame() = default;
+  AxisFrame(const IA& c, const IA& w) : W(w) {
+    const IA T = c + W, T2 = exact::square(T);
+    auto at = [](double t, IA& sq, IA& lin) {
+      const IA ti(t), q = IA(1) + exact::square(ti);
+      sq = exact::square(ti) / q, lin = ti / q;
+    };
+    at(T.inf(), sq_lo, lin_lo), at(T.sup(), sq_hi, lin_hi), at(c.inf(), sq_c, lin_c);  // (c: a point)
+    one_minus = IA(1) - T2, two_t = IA(2) * T, slope_scale = W / exact::square(IA(1) + T2);
+  }
+  IA range(const IA& a, const IA& b) const {
+    if (a.inf() == 0 && a.sup() == 0 && b.inf() == 0 && b.sup() == 0) return IA(0);
+    const IA N = b * one_minus + a * two_t;
+    if (N.inf() >= 0) return IA((a * sq_lo + b * lin_lo).inf(), (a * sq_hi + b * lin_hi).sup());
+    if (N.sup() <= 0) return IA((a * sq_hi + b * lin_hi).inf(), (a * sq_lo + b * lin_lo).sup());
+    const IA mv = a * sq_c + b * lin_c + N * slope_scale;
+    const IA g = a / IA(2) + IA(-1, 1) * (exact::sqrt(exact::square(a) + exact::square(b)) / IA(2));
+    const double lo = std::max(mv.inf(), g.inf()), hi = std::min(mv.sup(), g.sup());
+    return lo <= hi ? IA(lo, hi) : g;  // (both hold the range: disjoint only through a NaN)
+  }
+};
+// A box with its AxisFrames (Separable's Frame). Under upward rounding.
+struct SeparableFrame : Centred {
+  std::array<AxisFrame, 3> axis;
+  explicit SeparableFrame(const Box& V) : Centred(V) {
     exact::UpwardRounding up;
-    for (std::size_t i = 0; i < V.size(); ++i) {
-      const double mid = V[i].midpoint();
-      c[i] = IA(mid);
-      W[i] = IA((IA(V[i].lo) - c[i]).inf(), (IA(V[i].hi) - c[i]).sup());
+    for (std::size_t i = 0; i < V.size(); ++i) axis[i] = AxisFrame(c[i], W[i]);
+  }
+};
+struct Separable {
+  using Frame = SeparableFrame;
+  IA k{0};
+  std::array<IA, 3> a{IA(0), IA(0), IA(0)}, b{IA(0), IA(0), IA(0)};
+  int m = 0;
+  IA range(const Frame& B) const {
+    IA v = k;
+    for (int i = 0; i < m; ++i) v += B.axis[i].range(a[i], b[i]);
+    return v;
+  }
+  void add(const Separable& o, const IA& T) {
+    k += T * o.k;
+    for (int i = 0; i < 3; ++i) a[i] += T * o.a[i], b[i] += T * o.b[i];
+  }
+  // U = (a t^2 + b t) / q, q = 1 + t^2: U' = (b (1 - t^2) + 2 a t) / q^2, U'' / 2 = (b t^3 - 3 a t^2 - 3 b t + a) / q^3.
+  Local local(const double* c) const {
+    Local l;
+    l.f = k.inf();
+    for (int i = 0; i < m; ++i) {
+      const double A = a[i].inf(), B = b[i].inf(), t = c[i], q = 1 + t * t;
+      l.f += (A * t * t + B * t) / q;
+      l.g[i] = (B * (1 - t * t) + 2 * A * t) / (q * q);
+      l.G[i] = (B * t * t * t - 3 * A * t * t - 3 * B * t + A) / (q * q * q);
     }
+    return l;
   }
 };
 
@@ -317,71 +450,218 @@ struct Work {
   exact::SmallVector<int, 16> far;
   int depth = 0;
   bool vertex_decided = false;  // as rvd.cpp: Krawczyk decided this box or an ancestor with |S| = m
+  bool pending = false;         // left by the first pass for the second, its candidates' signs done
 };
 
-class Analysis final : public ParamCell {
+// The chart's side of a cell's analysis: the model F of each P_q (or of a positive multiple with
+// the same sign), the enclosures of phi and |phi - p|^2 over a box, Krawczyk's rows, and V0.
+// QUADRATIC: a RationalChart of degree <= 2 (spheres, SO(3)); F = Quadratic.
+class QuadraticModel {
  public:
-  Analysis(RationalChart chart, const io::PointSet& points, const PointGrid& grid, int p, const RestrictedCellOptions& o)
-      : points_(points), grid_(grid), p_(p), opt_(o), N_(static_cast<int>(chart.X.size())),
-        m_(chart.D.num_variables()), t_(chart.t) {
-    const EnclosedPolynomial D = EnclosedPolynomial::from_exact(chart.D);
-    D_ = Quadratic(D);
-    report_.graph_radius = r_ = o.graph_radius;
-    report_.rational_chart = true;
-    const auto pp = points.point(p);
+  using F = Quadratic;
+  QuadraticModel(const RationalChart& chart, std::span<const double> p)
+      : p_(p), N_(static_cast<int>(chart.X.size())), m_(chart.D.num_variables()), t_(chart.t) {
     exact::UpwardRounding up;
-    r2_ = IA(r_) * IA(r_);
+    D_enc_ = EnclosedPolynomial::from_exact(chart.D);
+    D_ = Quadratic(D_enc_);
     // Y_i = X_i - p_i D: phi(v) - p = Y(v) / D(v).
-    D_enc_ = D;
     for (int i = 0; i < N_; ++i) {
-      Y_enc_.push_back(EnclosedPolynomial::from_exact(chart.X[i]) + D.scaled(Interval::point(-pp[i])));
+      Y_enc_.push_back(EnclosedPolynomial::from_exact(chart.X[i]) + D_enc_.scaled(Interval::point(-p[i])));
       Y_.emplace_back(Y_enc_.back());
-    }
-    for (int q : grid.ball(pp, 2 * r_)) {  // every point of the closed ball B(p, 2r) (rvd.hpp)
-      if (q == p) continue;
-      // P_q = |q - p|^2 D - 2 (q - p).Y, its coefficients enclosed from those of D and Y.
-      IA c(0);
-      Quadratic P = D_;
-      for (int i = 0; i < N_; ++i) {
-        const IA d = IA(points.point(q)[i]) - IA(pp[i]);
-        c += exact::square(d);
-      }
-      P.a *= c;
-      for (int i = 0; i < 3; ++i) P.b[i] *= c, P.G[i] *= c, P.C[i] *= c;
-      for (int i = 0; i < N_; ++i) P.add(Y_[i], IA(-2) * (IA(points.point(q)[i]) - IA(pp[i])));
-      index_.push_back(q);
-      cands_.push_back(P);
     }
     // |phi - p|^2 D = (radius2 - |p - centre|^2) D - 2 (p - centre).Y (RationalChart).
     IA A = ia(exact::enclose(chart.radius2));
-    dist2_ = D_;
     std::vector<IA> w(N_);
-    for (int i = 0; i < N_; ++i) w[i] = IA(pp[i]) - ia(exact::enclose(chart.centre[i])), A -= exact::square(w[i]);
-    dist2_.a *= A;
-    for (int i = 0; i < 3; ++i) dist2_.b[i] *= A, dist2_.G[i] *= A, dist2_.C[i] *= A;
+    for (int i = 0; i < N_; ++i) w[i] = IA(p[i]) - ia(exact::enclose(chart.centre[i])), A -= exact::square(w[i]);
+    dist2_ = scaled(D_, A);
     for (int i = 0; i < N_; ++i) dist2_.add(Y_[i], IA(-2) * w[i]);
-    poly_cache_.resize(cands_.size());
   }
-
-  // P_q as an EnclosedPolynomial (Krawczyk's rows), from the same enclosures of D and Y.
-  EnclosedPolynomial polynomial(int i) const {
+  int m() const { return m_; }
+  double t() const { return t_; }
+  Box root() const { return Box(m_, Interval{-t_, t_}); }
+  // P_q = |q - p|^2 D - 2 (q - p).Y, its coefficients enclosed from those of D and Y.
+  F candidate(std::span<const double> q) const {
     exact::UpwardRounding up;
-    const auto pp = points_.point(p_), qq = points_.point(index_[i]);
+    IA c(0);
+    for (int i = 0; i < N_; ++i) c += exact::square(IA(q[i]) - IA(p_[i]));
+    F P = scaled(D_, c);
+    for (int i = 0; i < N_; ++i) P.add(Y_[i], IA(-2) * (IA(q[i]) - IA(p_[i])));
+    return P;
+  }
+  // P_q as an EnclosedPolynomial (Krawczyk's rows), from the same enclosures of D and Y.
+  EnclosedPolynomial polynomial(std::span<const double> q) const {
+    exact::UpwardRounding up;
     IA c(0);
     std::vector<EnclosedPolynomial> terms;
     for (int v = 0; v < N_; ++v) {
-      const IA d = IA(qq[v]) - IA(pp[v]);
+      const IA d = IA(q[v]) - IA(p_[v]);
       c += exact::square(d);
       terms.push_back(Y_enc_[v].scaled(exact::to_interval(IA(-2) * d)));
     }
     terms.push_back(D_enc_.scaled(exact::to_interval(c)));
     return EnclosedPolynomial::sum(terms, m_);
   }
+  // The enclosure of phi over the box (N intervals) and of |phi - p|^2. Under upward rounding.
+  void image(const Centred& B, Box* X, IA* d2) const {
+    const IA D = D_.tight_range(B.c.data(), B.W.data());  // >= k > 0
+    if (X) {
+      X->resize(N_);
+      for (int i = 0; i < N_; ++i) (*X)[i] = exact::to_interval(IA(p_[i]) + Y_[i].range(B) / D);
+    }
+    if (d2) *d2 = dist2_.range(B) / D;
+  }
+
+ private:
+  static Quadratic scaled(Quadratic Q, const IA& c) {
+    Q.a *= c;
+    for (int i = 0; i < 3; ++i) Q.b[i] *= c, Q.G[i] *= c, Q.C[i] *= c;
+    return Q;
+  }
+  std::span<const double> p_;
+  int N_, m_;
+  double t_;
+  Quadratic D_, dist2_;              // D, |phi - p|^2 D
+  std::vector<Quadratic> Y_;         // X_i - p_i D
+  EnclosedPolynomial D_enc_;         // D and Y, for Krawczyk's rows
+  std::vector<EnclosedPolynomial> Y_enc_;
+};
+
+// A PRODUCT OF CIRCLES (TorusChart): phi(v) = (phi_1(v_1), ..., phi_m(v_m)), so with d = q - p,
+//   s_q(phi(v)) = |d|^2 - 2 d.(phi - p) = k + sum_i U(a_i, b_i; v_i),
+//   k = |d|^2 - 2 sum_i d_i.(r_i n_i - p_i), a_i = 4 r_i d_i.n_i, b_i = -4 r_i d_i.n_i'
+// (d_i, p_i: the pair of circle i; (1 - t^2) / (1 + t^2) = 1 - 2 t^2 / (1 + t^2)): a Separable
+// model of s_q itself (no denominator). |phi - p|^2 likewise with d = p (|phi_i|^2 = r_i^2), k =
+// sum_i |r_i n_i - p_i|^2, and each coordinate r n + U(-2 r n, 2 r n'; t). Krawczyk's rows are
+// s_q D with D = prod_i (1 + v_i^2) > 0 (same zeros), a polynomial of degree 2 in each variable.
+class TorusModel {
+ public:
+  using F = Separable;
+  TorusModel(const TorusChart& chart, std::span<const double> p) : p_(p), m_(static_cast<int>(chart.r.size())) {
+    exact::UpwardRounding up;
+    t_ = *std::max_element(chart.t.begin(), chart.t.end());
+    for (int i = 0; i < m_; ++i) {
+      r_[i] = ia(exact::enclose(chart.r[i])), h_[i] = chart.t[i];
+      for (int j = 0; j < 2; ++j) n_[i][j] = ia(exact::enclose(chart.n[i][j]));
+    }
+    dist2_ = along(p);
+    dist2_.k = IA(0);
+    for (int i = 0; i < m_; ++i)
+      for (int j = 0; j < 2; ++j) dist2_.k += exact::square(r_[i] * n_[i][j] - IA(p[2 * i + j]));
+  }
+  int m() const { return m_; }
+  double t() const { return t_; }
+  Box root() const {
+    Box V(m_);
+    for (int i = 0; i < m_; ++i) V[i] = Interval{-h_[i], h_[i]};
+    return V;
+  }
+  F candidate(std::span<const double> q) const {
+    exact::UpwardRounding up;
+    std::array<IA, 6> d;
+    IA d2(0);
+    for (int i = 0; i < 2 * m_; ++i) d[i] = IA(q[i]) - IA(p_[i]), d2 += exact::square(d[i]);
+    F s = along(d);
+    s.k = d2;
+    for (int i = 0; i < m_; ++i)
+      for (int j = 0; j < 2; ++j) s.k -= IA(2) * d[2 * i + j] * (r_[i] * n_[i][j] - IA(p_[2 * i + j]));
+    return s;
+  }
+  EnclosedPolynomial polynomial(std::span<const double> q) const {
+    exact::UpwardRounding up;
+    const F s = candidate(q);
+    const Basis& B = basis(m_);
+    std::vector<EnclosedPolynomial> terms{B.D.scaled(exact::to_interval(s.k))};
+    for (int i = 0; i < m_; ++i)
+      terms.push_back(B.sq[i].scaled(exact::to_interval(s.a[i]))), terms.push_back(B.lin[i].scaled(exact::to_interval(s.b[i])));
+    return EnclosedPolynomial::sum(terms, m_);
+  }
+  void image(const SeparableFrame& B, Box* X, IA* d2) const {
+    if (X) {
+      X->resize(2 * m_);
+      for (int i = 0; i < m_; ++i) {
+        const IA rn0 = r_[i] * n_[i][0], rn1 = r_[i] * n_[i][1];  // n' = (-n1, n0)
+        (*X)[2 * i] = exact::to_interval(rn0 + B.axis[i].range(IA(-2) * rn0, IA(-2) * rn1));
+        (*X)[2 * i + 1] = exact::to_interval(rn1 + B.axis[i].range(IA(-2) * rn1, IA(2) * rn0));
+      }
+    }
+    if (d2) *d2 = dist2_.range(B);
+  }
+
+ private:
+  // a_i = 4 r_i w_i.n_i, b_i = -4 r_i w_i.n_i' for the vector w (pairs per circle); k left 0.
+  template <class V>
+  F along(const V& w) const {
+    F s;
+    s.m = m_;
+    for (int i = 0; i < m_; ++i) {
+      const IA w0 = IA(w[2 * i]), w1 = IA(w[2 * i + 1]);
+      s.a[i] = IA(4) * r_[i] * (w0 * n_[i][0] + w1 * n_[i][1]);
+      s.b[i] = IA(-4) * r_[i] * (w1 * n_[i][0] - w0 * n_[i][1]);  // w.n' = -w0 n1 + w1 n0
+    }
+    return s;
+  }
+  std::span<const double> p_;
+  int m_;
+  double t_ = 0;
+  std::array<IA, 3> r_{IA(0), IA(0), IA(0)};
+  std::array<double, 3> h_{0, 0, 0};
+  std::array<std::array<IA, 2>, 3> n_{};
+  F dist2_;
+  // D and, per variable i, v_i^2 D / (1 + v_i^2) and v_i D / (1 + v_i^2): exact, built once per m.
+  struct Basis {
+    EnclosedPolynomial D;
+    std::vector<EnclosedPolynomial> sq, lin;
+  };
+  static const Basis& basis(int m) {
+    static const std::array<Basis, 4> all = [] {
+      std::array<Basis, 4> b;
+      for (int m = 1; m <= 3; ++m) {
+        const Polynomial one = Polynomial::constant(1, m);
+        auto rest = [&](int skip) {
+          Polynomial r = one;
+          for (int j = 0; j < m; ++j)
+            if (j != skip) r = r * (one + Polynomial::variable(j, m) * Polynomial::variable(j, m));
+          return r;
+        };
+        b[m].D = EnclosedPolynomial::from_exact(rest(-1));
+        for (int i = 0; i < m; ++i) {
+          const Polynomial v = Polynomial::variable(i, m);
+          b[m].sq.push_back(EnclosedPolynomial::from_exact(v * v * rest(i)));
+          b[m].lin.push_back(EnclosedPolynomial::from_exact(v * rest(i)));
+        }
+      }
+      return b;
+    }();
+    return all[m];
+  }
+};
+
+template <class Model>
+class Analysis final : public ParamCell {
+ public:
+  using F = typename Model::F;
+  using Frame = typename F::Frame;
+  Analysis(Model chart, const io::PointSet& points, const PointGrid& grid, int p, const RestrictedCellOptions& o)
+      : points_(points), grid_(grid), p_(p), opt_(o), chart_(std::move(chart)), m_(chart_.m()), t_(chart_.t()) {
+    report_.graph_radius = r_ = o.graph_radius;
+    report_.rational_chart = true;
+    const auto pp = points.point(p);
+    exact::UpwardRounding up;
+    r2_ = IA(r_) * IA(r_);
+    for (int q : grid.ball(pp, 2 * r_)) {  // every point of the closed ball B(p, 2r) (rvd.hpp)
+      if (q == p) continue;
+      index_.push_back(q);
+      cands_.push_back(chart_.candidate(points.point(q)));
+    }
+    poly_cache_.resize(cands_.size());
+  }
+
+  EnclosedPolynomial polynomial(int i) const { return chart_.polynomial(points_.point(index_[i])); }
 
   double first_pass() override {
     report_.point = p_;
     Work root;
-    root.V.assign(m_, Interval{-t_, t_});
+    root.V = chart_.root();
     for (int i = 0; i < static_cast<int>(cands_.size()); ++i) root.S.push_back(i);
     subdivide({root});
     refine_below_ = std::max(refine_below_, farthest_vertex(report_, points_, p_));
@@ -411,19 +691,12 @@ class Analysis final : public ParamCell {
   }
 
   // The enclosure of phi over V (N intervals) and of |phi - p|^2.
-  void image(const Box& V, Box* X, IA* d2) const {
-    const Centred B(V);
+  void image(const Box& V, Box* X, IA* d2) const { image(Frame(V), X, d2); }
+  void image(const Frame& B, Box* X, IA* d2) const {
     exact::UpwardRounding up;
-    const IA D = D_.tight_range(B.c.data(), B.W.data());  // >= k > 0
-    const auto pp = points_.point(p_);
-    if (X) {
-      X->resize(N_);
-      for (int i = 0; i < N_; ++i) (*X)[i] = exact::to_interval(IA(pp[i]) + Y_[i].range(B.c.data(), B.W.data()) / D);
-    }
-    if (d2) {
-      const IA s = dist2_.range(B.c.data(), B.W.data()) / D;
-      *d2 = IA(std::max(0.0, s.inf()), std::max(0.0, s.sup()));  // (a square: >= 0)
-    }
+    IA s;
+    chart_.image(B, X, d2 ? &s : nullptr);
+    if (d2) *d2 = IA(std::max(0.0, s.inf()), std::max(0.0, s.sup()));  // (a square: >= 0)
   }
   void undecided(const Box& V, std::span<const int> S, std::string reason) {
     Box X;
@@ -443,16 +716,18 @@ class Analysis final : public ParamCell {
     ++report_.boxes;
     report_.max_depth = std::max(report_.max_depth, w.depth);
     exact::UpwardRounding up;
+    const Frame B(w.V);
     IA d2;
-    image(w.V, nullptr, &d2);
+    image(B, nullptr, &d2);
     if (d2.inf() >= r2_.sup()) return discard();  // |phi - p| >= r on V: outside the open ball
     // A candidate certainly closer than p on all of phi(V) leaves no point of Vor(p) there; one
-    // certainly farther can neither bound the cell in V nor exclude any part of it: dropped.
-    const Centred B(w.V);
+    // certainly farther can neither bound the cell in V nor exclude any part of it: dropped. (A
+    // box the first pass left pending has had exactly this done to it: not repeated.)
     for (auto* list : {&w.S, &w.far}) {
+      if (w.pending) break;
       std::size_t out = 0;
       for (int i : *list) {
-        const IA s = cands_[i].range(B.c.data(), B.W.data());
+        const IA s = cands_[i].range(B);
         if (s.sup() < 0) return discard();
         if (!(s.inf() > 0)) (*list)[out++] = i;
       }
@@ -473,6 +748,7 @@ class Analysis final : public ParamCell {
     const bool fine = (n == 1 && w.far.empty()) || widest <= opt_.covering_width * t_ || w.depth >= opt_.max_depth ||
                       (refining_ && bound <= std::max(refine_below_, report_.covering_bound));
     if (resolved && !refining_ && (!fine || n >= 2)) {  // waits for the second pass (rvd.cpp)
+      w.pending = true;
       pending_.push_back(std::move(w));
       return;
     }
@@ -540,28 +816,15 @@ class Analysis final : public ParamCell {
   // farther than p on R: A moves to `far`. The t_i are chosen in double (pairs: where one slope of
   // the combination vanishes at the centre; m of them, near a vertex: all slopes), and only the
   // enclosure of the combination, with those exact doubles, decides.
-  bool combined_signs(Work& w, const Centred& B) const {
+  bool combined_signs(Work& w, const Frame& B) const {
     int n = static_cast<int>(w.S.size());
     const int all = n + static_cast<int>(w.far.size());
-    auto at = [&](int i) -> const Quadratic& { return cands_[i < n ? w.S[i] : w.far[i - n]]; };
+    auto at = [&](int i) -> const F& { return cands_[i < n ? w.S[i] : w.far[i - n]]; };
     double c[3], h[3];
     for (int a = 0; a < m_; ++a) c[a] = B.c[a].inf(), h[a] = std::max(-B.W[a].inf(), B.W[a].sup());
-    // Each candidate near the centre, in double from the lower ends of its coefficients: value,
-    // slopes and second-order coefficients (only to choose t and skip hopeless combinations).
-    struct Local {
-      double f, g[3], G[3], C[3];
-    };
     if (all > kMaxCombined) return false;
-    Local L[kMaxCombined];
-    for (int i = 0; i < all; ++i) {
-      const Quadratic& Q = at(i);
-      Local& l = L[i];
-      l.f = Q.a.inf();
-      for (int a = 0; a < m_; ++a) l.f += (Q.b[a].inf() + Q.G[a].inf() * c[a]) * c[a], l.g[a] = Q.slope(a, c), l.G[a] = Q.G[a].inf();
-      for (int k = 0; k < 3; ++k)
-        if (Quadratic::pair[k][1] < m_) l.f += Q.C[k].inf() * c[Quadratic::pair[k][0]] * c[Quadratic::pair[k][1]];
-      for (int k = 0; k < 3; ++k) l.C[k] = Q.C[k].inf();
-    }
+    Local L[kMaxCombined];  // each candidate near the centre (only to choose t and skip hopeless combinations)
+    for (int i = 0; i < all; ++i) L[i] = at(i).local(c);
     // sign * (the extreme of L_A + sum t_i L_Bi towards -sign) over the box, approximately.
     auto approx = [&](int A, int j, const int* Bs, const double* t, double sign) {
       double f = L[A].f, q = 0;
@@ -580,9 +843,9 @@ class Analysis final : public ParamCell {
       return sign * f + q;  // > 0: the combination looks decided
     };
     auto range_of = [&](int A, int j, const int* Bs, const double* t) {
-      Quadratic Q = at(A);
+      F Q = at(A);
       for (int i = 0; i < j; ++i) Q.add(at(Bs[i]), IA(t[i]));
-      return Q.range(B.c.data(), B.W.data());
+      return Q.range(B);
     };
     // sign -1: sup (P_A + t P_B) < 0 for some t > 0?  sign +1: inf (P_A - t P_B) > 0?
     auto decides = [&](int A, int Bi, double sign) {
@@ -641,12 +904,12 @@ class Analysis final : public ParamCell {
     const std::vector<int> simplex = simplex_of(w.S);
     auto it = systems_.find(simplex);
     if (it == systems_.end()) {
-      std::vector<EnclosedPolynomial> rows;
+      std::vector<exact::EnclosedRow> rows;
       for (int i : w.S) {
-        if (!poly_cache_[i]) poly_cache_[i] = polynomial(i);
+        if (!poly_cache_[i]) poly_cache_[i] = exact::EnclosedRow(polynomial(i));
         rows.push_back(*poly_cache_[i]);
       }
-      it = systems_.emplace(simplex, exact::ParametricSystem::from_enclosures(std::move(rows), 0)).first;
+      it = systems_.emplace(simplex, exact::ParametricSystem::from_rows(rows)).first;
     }
     ++report_.krawczyk_calls;
     for (const auto& i : w.V)
@@ -674,18 +937,14 @@ class Analysis final : public ParamCell {
   const PointGrid& grid_;
   int p_;
   RestrictedCellOptions opt_;
-  int N_, m_;
+  Model chart_;
+  int m_;
   double t_, r_ = 0;
   IA r2_;
-  Quadratic D_;
-  std::vector<Quadratic> Y_;                // X_i - p_i D
-  std::vector<Quadratic> cands_;            // P_q
-  EnclosedPolynomial D_enc_;                // D and Y, for Krawczyk's rows (polynomial())
-  std::vector<EnclosedPolynomial> Y_enc_;
-  Quadratic dist2_;                         // |phi - p|^2 D
-  std::vector<std::optional<EnclosedPolynomial>> poly_cache_;  // polynomial(i), once built
-  static constexpr int kMaxCombined = 16;
-  std::unordered_set<std::uint64_t> faces_known_;  // candidate sets (known_faces' keys) whose faces are known   // COMBINED SIGNS on at most this many candidates
+  std::vector<F> cands_;                    // P_q (or s_q: the same sign)
+  std::vector<std::optional<exact::EnclosedRow>> poly_cache_;  // polynomial(i) prepared, once built
+  static constexpr int kMaxCombined = 16;  // COMBINED SIGNS on at most this many candidates
+  std::unordered_set<std::uint64_t> faces_known_;  // candidate sets (known_faces' keys) whose faces are known
   std::vector<int> index_;        // cands_[i] is P_{index_[i]}
   std::map<std::vector<int>, exact::ParametricSystem> systems_;
   bool refining_ = false;
@@ -701,15 +960,24 @@ std::optional<RationalChart> rational_chart(const io::ShapeSpec& shape, std::spa
   if (shape.kind == io::ShapeSpec::Kind::sphere && N == static_cast<int>(shape.center.size()) && (N == 3 || N == 4))
     return sphere_chart(shape, p, r);
   if (shape.kind == io::ShapeSpec::Kind::so3 && N == 9) return so3_chart(p, r);
+  if (auto T = torus_chart(shape, p, r)) return torus_rational_chart(*T);
   return std::nullopt;
+}
+
+std::optional<TorusChart> torus_chart(const io::ShapeSpec& shape, std::span<const double> p, double r) {
+  if (shape.kind != io::ShapeSpec::Kind::product_of_circles) return std::nullopt;
+  return circle_charts(shape, p, r);
 }
 
 std::unique_ptr<ParamCell> ParamCell::make(const io::ShapeSpec& shape, const io::PointSet& points, const PointGrid& grid,
                                            int p, const RestrictedCellOptions& options) {
   if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
-  std::optional<RationalChart> chart = rational_chart(shape, points.point(p), options.graph_radius);
+  const auto pp = points.point(p);
+  if (std::optional<TorusChart> T = torus_chart(shape, pp, options.graph_radius))
+    return std::make_unique<Analysis<TorusModel>>(TorusModel(*T, pp), points, grid, p, options);
+  std::optional<RationalChart> chart = rational_chart(shape, pp, options.graph_radius);
   if (!chart) return nullptr;
-  return std::make_unique<Analysis>(std::move(*chart), points, grid, p, options);
+  return std::make_unique<Analysis<QuadraticModel>>(QuadraticModel(*chart, pp), points, grid, p, options);
 }
 
 }  // namespace delcert::certify::detail

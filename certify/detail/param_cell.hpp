@@ -1,7 +1,7 @@
 // Restricted Voronoi cells in a RATIONAL CHART of M (docs/design.md §3.8), for the shapes whose
 // equations certify/intrinsic.hpp has verified (verify_declared_shape): a round sphere with
-// N = m + 1 and SO(3). The report and its statements are those of certify/rvd.hpp; only the way
-// M ∩ B(p, r) is parametrised differs, and no reach is assumed.
+// N = m + 1, a product of m <= 3 circles, and SO(3). The report and its statements are those of
+// certify/rvd.hpp; only the way M ∩ B(p, r) is parametrised differs, and no reach is assumed.
 //
 // A RATIONAL CHART at p is phi(v) = X(v) / D(v), v in R^m, with X (N polynomials) and D
 // polynomials with rational coefficients such that
@@ -37,12 +37,23 @@
 // and y~ has sin alpha < s = r' / sqrt(8); if s < 1, y.y~ > 0 and y is proportional to y~ + E v
 // with |v| = |E v| / |y~| = tan alpha < s / sqrt(1 - s^2) = t.
 //
+// PRODUCT OF CIRCLES (a flat torus in R^2m, circle i of rational radius r_i on (x_2i, x_2i+1),
+// centred at 0): one circle chart per pair, phi(v) = (phi_1(v_1), ..., phi_m(v_m)),
+// phi_i(t) = r_i ((1 - t^2) n_i + 2 t n_i') / (1 + t^2), n_i a rational unit vector near p's pair
+// (built as for the sphere, N = 2) and n_i' = (-n_i2, n_i1). (a): n_i' is orthogonal to n_i with
+// the same norm, so |(1 - t^2) n_i + 2 t n_i'|^2 = (1 - t^2)^2 + 4 t^2 = (1 + t^2)^2 once |n_i|^2 = 1
+// (checked exactly): phi(v) is on every circle, so in M. Lemma (b) per circle, as for the sphere
+// with rho = r_i: x in B(p, r) has |x_i - p_i| < r, so |v_i| < t_i from r'_i = r + |p_i - r_i n_i|.
+// As one RationalChart, D = prod (1 + v_i^2) (degree 2 in each variable); the cell analysis uses
+// the separable form instead (param_cell.cpp, TorusModel).
+//
 // When s >= 1 (a ball too large for one chart) there is no rational chart: the caller uses the
 // implicit engine (rvd.cpp).
 #pragma once
 
 #include <gmpxx.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <span>
@@ -57,7 +68,7 @@
 namespace delcert::certify::detail {
 
 // phi = X / D over V0 = [-t, t]^m, as above: X has N polynomials in m variables, all of X and D
-// of degree <= 2.
+// of degree <= 2 (spheres, SO(3)) or of degree <= 2 in each variable (products of circles).
 // M lies on the sphere |x - centre|^2 = radius2 (a round sphere: its own; SO(3): centre 0,
 // radius2 = 3 = |x|^2 for an orthogonal x), which (a) makes exact on phi: |x - p|^2 is then affine
 // in x on M, and |phi(v) - p|^2 D(v) = (radius2 - |p - centre|^2) D(v) - 2 (p - centre).Y(v) with
@@ -69,6 +80,14 @@ struct RationalChart {
   std::vector<mpq_class> centre;
   mpq_class radius2;
 };
+
+// A product of circles' chart at p: per circle, r_i, n_i and the half-width t_i (V0 = prod [-t_i, t_i]).
+struct TorusChart {
+  std::vector<mpq_class> r;
+  std::vector<std::array<mpq_class, 2>> n;
+  std::vector<double> t;
+};
+std::optional<TorusChart> torus_chart(const io::ShapeSpec& shape, std::span<const double> p, double r);
 
 // The chart at p for the ball B(p, r) (identities (a) checked), or none: another shape, or s >= 1.
 // Throws std::logic_error when the identities fail.

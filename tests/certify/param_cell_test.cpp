@@ -1,5 +1,5 @@
-// certify/detail/param_cell.cpp: restricted Voronoi cells in rational charts (round spheres and
-// SO(3)). The charts' covering lemma is tested against points of M found independently (Gauss-
+// certify/detail/param_cell.cpp: restricted Voronoi cells in rational charts (round spheres,
+// flat tori and SO(3)). The charts' covering lemma is tested against points of M found independently (Gauss-
 // Newton on the chart's own polynomials), the engine against the implicit one (spheres) and
 // against the independent Del_M of the quaternion hull (SO(3)), with the witnesses re-checked in
 // long double, and exact ties are never certified.
@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "certify/certify.hpp"
@@ -74,11 +75,22 @@ double preimage(const ChartEval& E, int m, const Eigen::VectorXd& x, Eigen::Vect
 // Gauss-Newton on the chart's polynomials, independently of how t was derived.
 TEST(ParamCell, TheChartCoversTheBall) {
   Rng rng(17);
-  for (const char* name : {"builtin:so3", "builtin:sphere-3", "builtin:sphere-2"}) {
+  for (const char* name :
+       {"builtin:so3", "builtin:sphere-3", "builtin:sphere-2", "builtin:clifford-torus-3", "builtin:clifford-torus-2"}) {
     const io::ManifoldSpec spec = io::read_spec(name);
     const io::ShapeSpec shape = verified(spec);
     const int N = spec.ambient_dimension, m = spec.intrinsic_dimension;
-    const io::PointSet P = N == 9 ? so3_net(40, 0.5, 3) : spread_sphere(N, 20, 0.3, 3);
+    const bool torus = shape.kind == io::ShapeSpec::Kind::product_of_circles;
+    // A point of M from a point y of R^N: per pair, scaled to its circle's radius (tori), or
+    // normalised (spheres); SO(3) below.
+    auto onto = [&](Eigen::VectorXd y) {
+      if (!torus) return Eigen::VectorXd(y / y.norm());
+      for (int i = 0; i < m; ++i) y.segment(2 * i, 2) *= shape.radii[i].get_d() / y.segment(2 * i, 2).norm();
+      return y;
+    };
+    const io::PointSet P = N == 9 ? so3_net(40, 0.5, 3)
+                           : torus ? (m == 3 ? torus3_bcc(3, 0.5, 4) : torus2_lattice(5, 6, 0.5, 4))
+                                   : spread_sphere(N, 20, 0.3, 3);
     int tested = 0;
     for (std::size_t p = 0; p < P.size(); p += 4)
       for (double r : {0.2, 0.7, 1.3}) {
@@ -101,6 +113,9 @@ TEST(ParamCell, TheChartCoversTheBall) {
             x << 1 - 2 * (b * b + c * c), 2 * (a * b - w * c), 2 * (a * c + w * b), 2 * (a * b + w * c),
                 1 - 2 * (a * a + c * c), 2 * (b * c - w * a), 2 * (a * c - w * b), 2 * (b * c + w * a),
                 1 - 2 * (a * a + b * b);
+          } else if (torus) {  // uniform angles
+            for (int i = 0; i < N; ++i) x[i] = rng.uniform() - 0.5;
+            x = onto(x);
           } else {
             for (int i = 0; i < N; ++i) x[i] = q[i];
           }
@@ -116,7 +131,7 @@ TEST(ParamCell, TheChartCoversTheBall) {
               Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
               Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(x.data()) = R;
             } else {
-              x = y / y.norm();
+              x = onto(y);
             }
           }
           if ((x - pp).norm() >= r) continue;
@@ -154,6 +169,58 @@ TEST(ParamCell, SpheresGiveTheImplicitEnginesDelRM) {
     EXPECT_GE(implicit.covering, rational.vertex_distance_lower);
     EXPECT_TRUE(rational.lower_faces.empty());
   }
+}
+
+// Every vertex witness of R re-checked in long double from its enclosure's midpoint x: narrow,
+// on M (`on_M` asserts it), equidistant from its simplex, nearer to it than to every other point.
+// Returns the number of vertices checked.
+int recheck_vertices(const io::PointSet& P, const RestrictedDelaunay& R, const std::function<void(const long double*)>& on_M) {
+  const int N = P.dimension;
+  int checked = 0;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    for (const auto& v : R.cells[p].vertices) {
+      std::vector<long double> x(N);
+      for (int i = 0; i < N; ++i) {
+        EXPECT_LT(v.x[i].width(), 1e-9);
+        x[i] = 0.5L * ((long double)v.x[i].lo + v.x[i].hi);
+      }
+      on_M(x.data());
+      auto dist2 = [&](int q) {
+        long double s = 0;
+        for (int i = 0; i < N; ++i) s += (x[i] - P.point(q)[i]) * (x[i] - P.point(q)[i]);
+        return s;
+      };
+      const long double r2 = dist2(v.simplex[0]);
+      for (int q : v.simplex) EXPECT_NEAR(static_cast<double>(dist2(q) - r2), 0.0, 1e-9);
+      for (int q = 0; q < static_cast<int>(P.size()); ++q)
+        if (!std::binary_search(v.simplex.begin(), v.simplex.end(), q)) {
+          EXPECT_GT(dist2(q), r2);
+        }
+      ++checked;
+    }
+  return checked;
+}
+
+// Every cell's covering bound holds at 20000 random points x of M (`sample`) in that cell (x's
+// nearest point p): |x - p| <= covering_bound_p; the largest such distance is at most the
+// certified covering, which is not loose (within 10% of the farthest certified vertex).
+void recheck_covering(const io::PointSet& P, const RestrictedDelaunay& R, const std::function<std::vector<double>(Rng&)>& sample) {
+  Rng rng(23);
+  double worst = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const std::vector<double> x = sample(rng);
+    int best = -1;
+    double bd = INFINITY;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      double d = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) d += (x[i] - P.point(p)[i]) * (x[i] - P.point(p)[i]);
+      if (d < bd) bd = d, best = static_cast<int>(p);
+    }
+    EXPECT_LE(std::sqrt(bd), R.cells[best].covering_bound * (1 + 1e-12)) << "a point of the cell of " << best;
+    worst = std::max(worst, std::sqrt(bd));
+  }
+  EXPECT_LE(worst, R.covering * (1 + 1e-12));
+  EXPECT_LT(R.covering, 1.1 * R.vertex_distance_lower);
 }
 
 // A well-spread sample of SO(3) and its Del_RM in rational charts (computed once for the tests).
@@ -199,39 +266,16 @@ TEST(ParamCell, So3DelRMIsCertifiedAndItsVerticesRecheck) {
 
   const RestrictedDelaunay& R = so3_case().R;
   ASSERT_TRUE(R.covering_certified) << R.reason;
-  int checked = 0;
-  for (std::size_t p = 0; p < P.size(); ++p)
-    for (const auto& v : R.cells[p].vertices) {
-      long double x[9], d[9];
-      for (int i = 0; i < 9; ++i) {
-        EXPECT_LT(v.x[i].width(), 1e-9);
-        x[i] = 0.5L * ((long double)v.x[i].lo + v.x[i].hi);
-      }
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) {
-          long double s = 0;
-          for (int j = 0; j < 3; ++j) s += x[3 * i + j] * x[3 * k + j];
-          EXPECT_NEAR(static_cast<double>(s), i == k ? 1.0 : 0.0, 1e-9);
-        }
-      auto dist2 = [&](int q) {
-        long double s = 0;
-        for (int i = 0; i < 9; ++i) d[i] = x[i] - P.point(q)[i], s += d[i] * d[i];
-        return s;
-      };
-      const long double r2 = dist2(v.simplex[0]);
-      for (int q : v.simplex) EXPECT_NEAR(static_cast<double>(dist2(q) - r2), 0.0, 1e-9);
-      for (int q = 0; q < static_cast<int>(P.size()); ++q)
-        if (!std::binary_search(v.simplex.begin(), v.simplex.end(), q)) {
-          EXPECT_GT(dist2(q), r2);
-        }
-      ++checked;
-    }
-  EXPECT_GT(checked, static_cast<int>(4 * P.size()));
-  // Every cell's covering bound holds at random rotations x of that cell (x's nearest point p):
-  // |x - p| <= covering_bound_p, and the largest such distance is at most the certified covering.
-  Rng rng(23);
-  double worst = 0;
-  for (int k = 0; k < 20000; ++k) {
+  EXPECT_GT(recheck_vertices(P, R, [](const long double* x) {
+              for (int i = 0; i < 3; ++i)
+                for (int k = 0; k < 3; ++k) {
+                  long double s = 0;
+                  for (int j = 0; j < 3; ++j) s += x[3 * i + j] * x[3 * k + j];
+                  EXPECT_NEAR(static_cast<double>(s), i == k ? 1.0 : 0.0, 1e-9);
+                }
+            }),
+            static_cast<int>(4 * P.size()));
+  recheck_covering(P, R, [](Rng& rng) {
     double q[4], len = 0;
     for (double& c : q) {
       const double u1 = rng.uniform() + 1e-300, u2 = rng.uniform();
@@ -239,21 +283,10 @@ TEST(ParamCell, So3DelRMIsCertifiedAndItsVerticesRecheck) {
     }
     for (double& c : q) c /= std::sqrt(len);
     const double w = q[0], a = q[1], b = q[2], cc = q[3];
-    const double x[9] = {1 - 2 * (b * b + cc * cc), 2 * (a * b - w * cc), 2 * (a * cc + w * b),
-                         2 * (a * b + w * cc),     1 - 2 * (a * a + cc * cc), 2 * (b * cc - w * a),
-                         2 * (a * cc - w * b),     2 * (b * cc + w * a),     1 - 2 * (a * a + b * b)};
-    int best = -1;
-    double bd = INFINITY;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      double d = 0;
-      for (int i = 0; i < 9; ++i) d += (x[i] - P.point(p)[i]) * (x[i] - P.point(p)[i]);
-      if (d < bd) bd = d, best = static_cast<int>(p);
-    }
-    EXPECT_LE(std::sqrt(bd), R.cells[best].covering_bound * (1 + 1e-12)) << "a rotation of the cell of " << best;
-    worst = std::max(worst, std::sqrt(bd));
-  }
-  EXPECT_LE(worst, R.covering * (1 + 1e-12));
-  EXPECT_LT(R.covering, 1.1 * R.vertex_distance_lower);  // and the bound is not loose
+    return std::vector<double>{1 - 2 * (b * b + cc * cc), 2 * (a * b - w * cc), 2 * (a * cc + w * b),
+                               2 * (a * b + w * cc),     1 - 2 * (a * a + cc * cc), 2 * (b * cc - w * a),
+                               2 * (a * cc - w * b),     2 * (b * cc + w * a),     1 - 2 * (a * a + b * b)};
+  });
 }
 
 // An exact tie on SO(3): the identity I is at exactly the same distance from six points, the
@@ -324,6 +357,84 @@ TEST(ParamCell, So3MutantsAreRefuted) {
   while (in.count(extra)) ++extra[3];
   added.simplices.push_back(extra);
   EXPECT_EQ(check(run_claim(added), CheckId::restricted_delaunay).verdict, Verdict::refuted);
+}
+
+// Flat tori T^2 and T^3 (products of circles) in the separable circle charts. On T^2 the implicit
+// engine finds the same Del_RM, both complete, each covering bound at least the other's farthest
+// vertex (on T^3 it takes minutes on a sample this coarse: the circle charts about a second). On
+// both, every vertex witness re-checks in long double and the cells' covering bounds hold at
+// random points of M; through the certifier, checks 11 and 12 are CERTIFIED and Del_RM = Del_M
+// (the latter from the independent periodic lifting, certify/intrinsic_torus.cpp) is decided.
+TEST(ParamCell, FlatToriInCircleChartsAreCertifiedAndTheirWitnessesRecheck) {
+  for (int m : {2, 3}) {
+    SCOPED_TRACE("m = " + std::to_string(m));
+    const io::ManifoldSpec spec = io::read_spec(m == 2 ? "builtin:clifford-torus-2" : "builtin:clifford-torus-3");
+    const io::ShapeSpec shape = verified(spec);
+    const io::PointSet P = m == 2 ? torus2_lattice(16, 18, 0.3, 12) : torus3_bcc(6, 0.3, 12);
+    const exact::ImplicitSystem system(spec.equations, 2 * m);
+    const detail::PointGrid grid(P, m);
+    RestrictedDelaunayOptions o;
+    o.threads = 2;
+    o.cell.shape = &shape;
+    const RestrictedDelaunay rational = compute_restricted_delaunay(system, P, grid, o);
+    ASSERT_TRUE(rational.covering_certified) << rational.reason;
+    EXPECT_EQ(rational.rational_chart_cells, static_cast<long>(P.size()));
+    EXPECT_GT(rational.simplices.size(), P.size());
+    EXPECT_TRUE(rational.lower_faces.empty());
+    if (m == 2) {
+      o.cell.shape = nullptr;
+      const RestrictedDelaunay implicit = compute_restricted_delaunay(system, P, grid, o);
+      ASSERT_TRUE(implicit.covering_certified) << implicit.reason;
+      EXPECT_EQ(implicit.rational_chart_cells, 0);
+      EXPECT_EQ(simplex_set(implicit), simplex_set(rational));
+      EXPECT_GE(rational.covering, implicit.vertex_distance_lower);
+      EXPECT_GE(implicit.covering, rational.vertex_distance_lower);
+    }
+    EXPECT_GT(recheck_vertices(P, rational, [m](const long double* x) {
+                for (int i = 0; i < m; ++i) EXPECT_NEAR(static_cast<double>(x[2 * i] * x[2 * i] + x[2 * i + 1] * x[2 * i + 1]), 1.0, 1e-9);
+              }),
+              static_cast<int>(P.size()));
+    recheck_covering(P, rational, [m](Rng& rng) {
+      std::vector<double> x;
+      for (int i = 0; i < m; ++i) {
+        const double a = 2 * M_PI * rng.uniform();
+        x.push_back(std::cos(a)), x.push_back(std::sin(a));
+      }
+      return x;
+    });
+    TempDir dir("param-torus");
+    CertifyOptions co;
+    co.manifold = m == 2 ? "builtin:clifford-torus-2" : "builtin:clifford-torus-3";
+    co.points = dir.file("points.txt");
+    io::write_points(co.points, P);
+    const Certificate c = run_certify(co);
+    for (CheckId id : {CheckId::covering, CheckId::restricted_delaunay})
+      EXPECT_EQ(check(c, id).verdict, Verdict::certified) << check_name(id) << ": " << check(c, id).summary;
+    EXPECT_NE(check(c, CheckId::restricted_equals_intrinsic).verdict, Verdict::undecided);
+    EXPECT_EQ(check(c, CheckId::covering).details["rational_chart_cells"].get<long>(), static_cast<long>(P.size()));
+  }
+}
+
+// A square grid in angle space on T^2, (cos a_i, sin a_i, cos b_j, sin b_j) in doubles: exact ties
+// by the product structure alone (the bisector of two of the first circle's points meets it at x1,
+// the second's at x2, and (x1, x2) is equidistant from the four points of the grid cell), analysed
+// in circle charts: Del_RM and the covering are never CERTIFIED.
+TEST(ParamCell, AnExactTieOnTheFlatTorusIsNeverCertified) {
+  TempDir dir("param-torus-tie");
+  std::vector<std::vector<double>> pts;
+  const int k = 10;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      pts.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), std::cos(2 * M_PI * j / k), std::sin(2 * M_PI * j / k)});
+  CertifyOptions o;
+  o.manifold = "builtin:clifford-torus-2";
+  o.points = dir.file("points.txt");
+  io::write_points(o.points, make_points(4, pts));
+  const Certificate c = run_certify(o);
+  EXPECT_GT(check(c, CheckId::covering).details["rational_chart_cells"].get<long>(), 0);
+  EXPECT_NE(check(c, CheckId::restricted_delaunay).verdict, Verdict::certified);
+  EXPECT_NE(check(c, CheckId::covering).verdict, Verdict::certified);
+  EXPECT_NE(check(c, CheckId::tangential_equals_restricted).verdict, Verdict::certified);
 }
 
 }  // namespace

@@ -163,8 +163,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // to 3 s and the total to ~8550. Per-point claims (issue 15 item 2, claims v3: checks 10 and 11
   // against eps(p) with their witnesses, the count check, the files' hashes and the re-analysis of
   // cells whose bound the shared covering target left loose, ~120 lines in certify.cpp) took it to
-  // 8667: 8690.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8690) << "certify/ should stay small enough to read whole";
+  // 8667: 8690. Flat tori in circle charts (issue 11: param_cell's separable model with its range
+  // argument, the circle charts and their lemma, the analysis made generic over the chart, ~270
+  // lines) took the refined T^3's Del_RM from 62 to 28 CPU-s and coarse T^3 samples from minutes
+  // to a second: 8946, so 8970.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8970) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

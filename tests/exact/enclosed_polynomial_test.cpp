@@ -127,6 +127,31 @@ TEST(EnclosedPolynomial, ExactZerosAreDroppedAndKnownZerosRemoved) {
   }
 }
 
+TEST(EnclosedPolynomial, SystemsFromSharedRowsDecideLikeFromEnclosures) {
+  // Two circles x^2 + y^2 = 4 and (x - 1)^2 + y^2 = 4 meet at (1/2, +-sqrt(15)/2); rows prepared
+  // once (EnclosedRow) and shared by several systems give the same answers, bit for bit.
+  const EnclosedPolynomial a = EnclosedPolynomial::from_exact(Polynomial::parse("x1^2 + x2^2 - 4", 2));
+  const EnclosedPolynomial b = EnclosedPolynomial::from_exact(Polynomial::parse("x1^2 - 2*x1 + x2^2 - 3", 2));
+  const std::vector<EnclosedRow> rows{EnclosedRow(a), EnclosedRow(b)};
+  const ParametricSystem shared = ParametricSystem::from_rows(rows);
+  const ParametricSystem reversed = ParametricSystem::from_rows(std::vector<EnclosedRow>{rows[1], rows[0]});
+  const ParametricSystem direct = ParametricSystem::from_enclosures({a, b}, 0);
+  for (const Box& X : {Box{{0.25, 0.75}, {1.75, 2.0}}, Box{{0.25, 0.75}, {-2.0, -1.75}}, Box{{1.5, 2.0}, {0.0, 0.5}},
+                       Box{{0.0, 1.0}, {-2.0, 2.0}}}) {
+    const auto s = krawczyk(shared, Box{}, X), r = krawczyk(reversed, Box{}, X), d = krawczyk(direct, Box{}, X);
+    EXPECT_EQ(s.status, d.status);
+    EXPECT_EQ(r.status, d.status);
+    for (std::size_t i = 0; i < X.size() && s.status == RootStatus::unique_root; ++i) {
+      EXPECT_EQ(s.box[i].lo, d.box[i].lo);
+      EXPECT_EQ(s.box[i].hi, d.box[i].hi);
+    }
+  }
+  EXPECT_EQ(krawczyk(shared, Box{}, Box{{0.25, 0.75}, {1.75, 2.0}}).status, RootStatus::unique_root);
+  EXPECT_EQ(krawczyk(shared, Box{}, Box{{1.5, 2.0}, {0.0, 0.5}}).status, RootStatus::no_root);
+  EXPECT_THROW(ParametricSystem::from_rows(std::vector<EnclosedRow>{rows[0]}), std::invalid_argument);  // 2 variables, 1 row
+  EXPECT_THROW(ParametricSystem::from_rows(std::vector<EnclosedRow>{}), std::invalid_argument);
+}
+
 TEST(EnclosedPolynomial, ParametricSystemFromEnclosuresDecidesLikeTheExactOne) {
   // x2^2 - x1 (parameter x1 = u, unknown x2): sqrt(u) over parameter boxes.
   const Polynomial f = Polynomial::parse("x2^2 - x1", 2);
