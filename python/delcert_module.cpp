@@ -3,6 +3,7 @@
 //   delcert.sample(manifold, eps, seed=1)                          -> float64 array (n, N)
 //   delcert.tangential(manifold, points, threads=0)                -> int64 array (k, m+1)
 //   delcert.refine(manifold, points=None, eps=None, ...)           -> dict: points, complex, claims, report, converged
+//                                                                     (+ eps_per_point with sizing='curvature')
 //   delcert.certify(manifold, points, complex=None, kind=None, claims=None, ...) -> the certificate as a dict
 //
 // Each function makes the library calls its command makes (core/app/*_command.cpp,
@@ -294,11 +295,20 @@ std::string rational_text(const py::handle& obj, const std::string& option) {
 py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg, const py::object& eps_arg,
                        const std::string& mode, const py::object& gamma0, const py::object& alpha, const py::object& beta,
                        const py::object& delta0, std::uint64_t seed, int threads, std::size_t max_inserted,
-                       std::size_t max_rounds, const py::object& out_arg, std::size_t max_points) {
+                       std::size_t max_rounds, const py::object& out_arg, std::size_t max_points,
+                       const std::string& sizing, const py::object& sizing_c_arg, const py::object& eps_floor_arg) {
   const std::string source = path_text(manifold_arg);
   check_threads(threads);
   if (mode != "practical" && mode != "paper")
     throw BindingInputError("mode: '" + mode + "' is not one of practical, paper");
+  if (sizing != "uniform" && sizing != "curvature")
+    throw BindingInputError("sizing: '" + sizing + "' is not one of uniform, curvature");
+  const bool curvature = sizing == "curvature";
+  // As `delcert refine --sizing-c C --eps-floor F`: exact rationals, read by parse_rational_option
+  // (None: not given; the command's default c = 1/2 and floor = eps/10).
+  std::optional<std::string> sizing_c, eps_floor;
+  if (!sizing_c_arg.is_none()) sizing_c = rational_text(sizing_c_arg, "--sizing-c");
+  if (!eps_floor_arg.is_none()) eps_floor = rational_text(eps_floor_arg, "--eps-floor");
   refine::ConstantTexts texts;
   if (!eps_arg.is_none()) texts.eps = rational_text(eps_arg, "--eps");
   if (!delta0.is_none()) texts.delta0 = rational_text(delta0, "--delta0");
@@ -316,8 +326,10 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
     std::error_code ec;
     if (fs::exists(out, ec) && !fs::is_directory(out, ec))
       throw io::InputError(out, 0, "--out: exists and is not a directory; refine writes a directory of four files");
-    for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"})
-      io::check_output_path((fs::path(out) / f).string(), "--out", {source, points_path}, {}, true);
+    std::vector<std::string> outs;
+    for (const char* f : {"points.txt", "complex.txt", "claims.json", "report.json"}) outs.push_back((fs::path(out) / f).string());
+    if (curvature) outs.push_back((fs::path(out) / "eps.txt").string());
+    for (const auto& o : outs) io::check_output_path(o, "--out", {source, points_path}, {}, true);
     return 0;
   });
   manifold::Manifold manifold = translating("", {}, [&] { return read_manifold(source); });
@@ -339,6 +351,26 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
     refine::RefineParameters params;
     params.mode = mode == "paper" ? refine::RefineMode::paper : refine::RefineMode::practical;
     params.constants = refine::parse_constants(texts, m);
+    // The sizing field, as `delcert refine` fills it (core/app/refine_command.cpp), same checks in
+    // the same order.
+    if (curvature) {
+      if (params.mode == refine::RefineMode::paper)
+        throw io::InputError("delcert.refine", 0,
+                             "sizing='curvature' needs mode='practical' (the paper's Algorithm 1 uses one eps)");
+      params.sizing.kind = refine::SizingKind::curvature;
+      params.sizing.c = refine::parse_rational_option("--sizing-c", sizing_c ? *sizing_c : std::string("0.5"));
+      if (eps_floor) params.sizing.floor = refine::parse_rational_option("--eps-floor", *eps_floor);
+      if (!params.constants.eps)
+        throw io::InputError("delcert.refine", 0, "sizing='curvature' needs eps (the field's cap)");
+      try {
+        refine::SizingField check = params.sizing;
+        refine::resolve_sizing(check, *params.constants.eps);
+      } catch (const refine::ParameterError& e) {
+        throw io::InputError("delcert.refine", 0, e.what());
+      }
+    } else if (sizing_c || eps_floor) {
+      throw io::InputError("delcert.refine", 0, "sizing_c and eps_floor need sizing='curvature'");
+    }
     params.seed = seed;
     params.threads = threads;
     params.max_inserted = max_inserted;
@@ -389,6 +421,13 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
   d["report"] = json_to_python(report_json);
   d["converged"] = result.converged;
   d["input_size"] = result.input_size;
+  if (curvature) {
+    // ε(p) per point, the doubles the refiner used (eps.txt holds each as the 6-digit decimal at
+    // or above it, at most eps).
+    py::array_t<double> e(static_cast<py::ssize_t>(result.local_eps.size()));
+    std::copy(result.local_eps.begin(), result.local_eps.end(), e.mutable_data());
+    d["eps_per_point"] = e;
+  }
   return d;
 }
 
@@ -563,11 +602,17 @@ PYBIND11_MODULE(delcert, m) {
         py::arg("mode") = "practical", py::arg("gamma0") = "0.15", py::arg("alpha") = "0.3", py::arg("beta") = "1.1",
         py::arg("delta0") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0, py::arg("max_inserted") = 0,
         py::arg("max_rounds") = 0, py::arg("out") = py::none(), py::arg("max_points") = 0,
+        py::arg("sizing") = "uniform", py::arg("sizing_c") = py::none(), py::arg("eps_floor") = py::none(),
         "Refines a sample of M until its tangential complex is thick, protected and consistent\n"
         "(`delcert refine`). Start from points (an array or a file path) or, without them, from an\n"
         "eps-net. The constants are exact: give them as str ('0.25', '1/4'), int or float. Returns a\n"
         "dict: points, complex, claims (claims.json as a dict), report (report.json as a dict),\n"
-        "converged, input_size. out=DIR also writes the four files, as `delcert refine --out DIR`.");
+        "converged, input_size. out=DIR also writes the four files, as `delcert refine --out DIR`.\n"
+        "sizing='uniform' (one eps, the default) or 'curvature' (`--sizing curvature`, practical mode,\n"
+        "needs eps): eps(x) = min(eps, max(eps_floor, sizing_c / kappa_max(x))), sizing_c exact\n"
+        "(default 1/2), eps_floor exact (default eps/10); sizing_c and eps_floor only with 'curvature'.\n"
+        "With 'curvature' claims is version 3, the dict also has eps_per_point (float64 array (n,),\n"
+        "eps(p) per point as the refiner used it, each <= eps), and out=DIR also writes eps.txt.");
 
   m.def("certify", &py_certify, py::arg("manifold"), py::arg("points"), py::arg("complex") = py::none(),
         py::arg("kind") = py::none(), py::arg("claims") = py::none(), py::arg("threads") = 0,

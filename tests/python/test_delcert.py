@@ -146,6 +146,41 @@ def test_refine_from_points_keeps_them_first(sphere_net):
     assert r["input_size"] == len(sphere_net)
 
 
+def test_refine_curvature_sizing_matches_the_command(tmp_path):
+    # As tests/core/refine/refine_sizing_test.cpp: the 4-2-1 ellipsoid, eps 0.5 (the field's cap),
+    # --sizing curvature with the default c = 1/2 and floor eps/10. The same files, byte for byte,
+    # as `delcert refine` with the same arguments, eps.txt included, and eps(p) per point returned.
+    spec = str(FIXTURES / "specs" / "uneven" / "ellipsoid-4-2-1.json")
+    out = tmp_path / "py"
+    r = delcert.refine(spec, eps="0.5", sizing="curvature", seed=1, threads=THREADS, out=out)
+    subprocess.run([str(BINARY_DIR / "delcert"), "refine", "--manifold", spec, "--eps", "0.5", "--sizing", "curvature",
+                    "--seed", "1", "--threads", str(THREADS), "--out", str(tmp_path / "cli")],
+                   check=True, capture_output=True)
+    for name in ("points.txt", "complex.txt", "claims.json", "eps.txt"):
+        assert (out / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert r["converged"]
+    assert r["claims"]["format"] == "delcert-claims v3"
+    assert r["claims"]["star_radius_per_point"] == "eps.txt" and "star_radius" not in r["claims"]
+    assert r["claims"] == json.loads((tmp_path / "cli" / "claims.json").read_text())
+    assert r["report"]["sizing"]["kind"] == "curvature"
+    cli_points = np.loadtxt(tmp_path / "cli" / "points.txt", skiprows=2, ndmin=2)
+    assert np.array_equal(r["points"], cli_points)
+    cli_complex = np.loadtxt(tmp_path / "cli" / "complex.txt", skiprows=2, dtype=np.int64, ndmin=2)
+    assert np.array_equal(r["complex"], cli_complex)
+    # eps(p): one per point, at most the cap, at least the floor eps/10, and at most eps.txt's
+    # decimal for the same point (written at or above the refiner's double).
+    e = r["eps_per_point"]
+    assert isinstance(e, np.ndarray) and e.dtype == np.float64 and e.shape == (len(r["points"]),)
+    assert np.all(e <= 0.5) and np.all(e >= 0.05)
+    assert e.min() < 0.13 and e.max() == 0.5  # the sharp ends (c / kappa_max = 1/8) and the flat parts
+    written = np.loadtxt(tmp_path / "cli" / "eps.txt", comments="#")
+    assert written.shape == e.shape and np.all(e <= written)
+    # Uniform sizing (the default) returns no eps_per_point and writes no eps.txt.
+    uniform = delcert.refine(spec, eps="0.5", seed=1, threads=THREADS, out=tmp_path / "uniform")
+    assert "eps_per_point" not in uniform and uniform["claims"]["format"] == "delcert-claims v2"
+    assert not (tmp_path / "uniform" / "eps.txt").exists()
+
+
 # -------------------------------------------------------------------------------------- bad inputs
 
 def test_unknown_manifold_has_the_command_message(tmp_path):
@@ -244,3 +279,26 @@ def test_refine_shrinks_eps_locally_from_a_coarse_eps():
     assert not capped["converged"]
     assert capped["report"]["stop_reason"] == "max_points"
     assert len(capped["points"]) == 40
+
+
+def test_bad_sizing_options_are_refused_as_by_the_command(tmp_path):
+    # The cases tests/core/refine/refine_sizing_test.cpp refuses, and an unknown field; nothing is written.
+    spec = str(FIXTURES / "specs" / "uneven" / "ellipsoid-4-2-1.json")
+    out = tmp_path / "o"
+    cases = [
+        (dict(sizing="curvy"), "sizing: 'curvy' is not one of uniform, curvature"),
+        (dict(sizing="curvature", eps_floor="0.6"), "--eps-floor: must not exceed --eps = 0.5"),
+        (dict(sizing="curvature", sizing_c=0), "--sizing-c: must be a positive number (got 0)"),
+        (dict(sizing="curvature", sizing_c="abc"), "--sizing-c: 'abc' is not a number"),
+        (dict(eps_floor="0.1"), "sizing_c and eps_floor need sizing='curvature'"),
+        (dict(sizing_c="0.5"), "sizing_c and eps_floor need sizing='curvature'"),  # even the default value
+        (dict(sizing="curvature", mode="paper"), "sizing='curvature' needs mode='practical'"),
+    ]
+    for kwargs, message in cases:
+        with pytest.raises(delcert.InputError) as e:
+            delcert.refine(spec, eps="0.5", out=out, **kwargs)
+        assert message in str(e.value), kwargs
+    with pytest.raises(delcert.InputError) as e:
+        delcert.refine(spec, FIXTURES / "points" / "octahedron.off", sizing="curvature", out=out)
+    assert "sizing='curvature' needs eps (the field's cap)" in str(e.value)
+    assert not out.exists()
