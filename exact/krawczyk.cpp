@@ -298,15 +298,47 @@ namespace {
 // +inf); gradual underflow is rounded in the same direction (IEEE directed rounding; the build
 // uses no flush-to-zero). A non-finite bound ends the evaluation (return false), so every box
 // that leaves this function has finite bounds that enclose what they claim.
+// The operator itself from G(U, y) (fy, n) and J_x(U, X) (jx, n x n row-major), both enclosures
+// with finite bounds, at the point y of X.
+template <int MaxN>
+bool krawczyk_core(int n, const double* y, const IA* fy, const IA* jx, const Box& X, Box& K) {
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
+  Mat Jmid(n, n), Y(n, n);
+  // Preconditioner: inverse of the midpoint Jacobian, in ordinary floating point. Any matrix is
+  // correct here; a good one makes the tests succeed.
+  {
+    NearestRounding nearest;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
+    Eigen::FullPivLU<Mat> lu(Jmid);
+    if (!lu.isInvertible()) return false;
+    Y = lu.inverse();
+    if (!Y.allFinite()) return false;
+  }
+  // K = y - Y G(U, y) + (I - Y J_x(U, X)) (X - y), all in interval arithmetic.
+  K.assign(n, Interval{});
+  detail::EnsureUpward guard;
+  for (int i = 0; i < n; ++i) {
+    IA acc = IA(y[i]);
+    for (int j = 0; j < n; ++j) acc = acc - IA(Y(i, j)) * fy[j];
+    for (int j = 0; j < n; ++j) {
+      IA c = IA(i == j ? 1.0 : 0.0);
+      for (int l = 0; l < n; ++l) c = c - IA(Y(i, l)) * jx[l * n + j];
+      acc = acc + c * (IA(X[j].lo, X[j].hi) - IA(y[j]));
+    }
+    if (!finite(acc)) return false;
+    K[i] = detail::from_ia(acc);
+  }
+  return true;
+}
+
 template <int MaxN>
 bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
-  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
   const int n = S.n, m = S.m;
   SmallBuffer<double, 8> y(n), u0(m);
   SmallBuffer<IA, 16> xs(m + n), ys(m + n), zs(m > 0 ? m + n : 0);
   SmallBuffer<IA, 8> fy(n);
   SmallBuffer<IA, 64> jx(static_cast<std::size_t>(n) * n);
-  Mat Jmid(n, n), Y(n, n);
   // Midpoints, clamped into X and U whatever the rounding mode (any point of X works as the
   // centre; the centred form below needs only u0 in U).
   for (int i = 0; i < n; ++i) y[i] = std::clamp(X[i].lo + 0.5 * (X[i].hi - X[i].lo), X[i].lo, X[i].hi);
@@ -348,32 +380,7 @@ bool krawczyk_operator_impl(const SquareSystem::Impl& S, const Box& U, const Box
     }
   }
   if (!ok) return false;
-  // Preconditioner: inverse of the midpoint Jacobian, in ordinary floating point. Any matrix is
-  // correct here; a good one makes the tests succeed.
-  {
-    NearestRounding nearest;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
-    Eigen::FullPivLU<Mat> lu(Jmid);
-    if (!lu.isInvertible()) return false;
-    Y = lu.inverse();
-    if (!Y.allFinite()) return false;
-  }
-  // K = y - Y G(U, y) + (I - Y J_x(U, X)) (X - y), all in interval arithmetic.
-  K.assign(n, Interval{});
-  detail::EnsureUpward guard;
-  for (int i = 0; i < n; ++i) {
-    IA acc = ys[m + i];
-    for (int j = 0; j < n; ++j) acc = acc - IA(Y(i, j)) * fy[j];
-    for (int j = 0; j < n; ++j) {
-      IA c = IA(i == j ? 1.0 : 0.0);
-      for (int l = 0; l < n; ++l) c = c - IA(Y(i, l)) * jx[l * n + j];
-      acc = acc + c * (xs[m + j] - ys[m + j]);
-    }
-    if (!finite(acc)) return false;
-    K[i] = detail::from_ia(acc);
-  }
-  return true;
+  return krawczyk_core<MaxN>(n, y.begin(), fy.begin(), jx.begin(), X, K);
 }
 
 bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, Box& K) {
@@ -381,6 +388,28 @@ bool krawczyk_operator(const SquareSystem::Impl& S, const Box& U, const Box& X, 
   // heap; the same algorithms, so the same preconditioner.
   if (S.n <= 4) return krawczyk_operator_impl<4>(S, U, X, K);
   return krawczyk_operator_impl<Eigen::Dynamic>(S, U, X, K);
+}
+
+// The same operator for an EnclosedFunction: its enclosures stand in for the evaluations above.
+bool krawczyk_operator(const EnclosedFunction& F, const Box& X, Box& K) {
+  const int n = F.size();
+  SmallBuffer<double, 8> y(n);
+  SmallBuffer<Interval, 8> f(n);
+  SmallBuffer<Interval, 64> J(static_cast<std::size_t>(n) * n);
+  SmallBuffer<IA, 8> fy(n);
+  SmallBuffer<IA, 64> jx(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < n; ++i) y[i] = std::clamp(X[i].lo + 0.5 * (X[i].hi - X[i].lo), X[i].lo, X[i].hi);
+  if (!F.values(y.span(), std::span<Interval>(f.begin(), f.end())) ||
+      !F.jacobian(X, std::span<Interval>(J.begin(), J.end())))
+    return false;
+  for (int i = 0; i < n; ++i) fy[i] = IA(f[i].lo, f[i].hi);
+  for (int i = 0; i < n * n; ++i) jx[i] = IA(J[i].lo, J[i].hi);
+  for (int i = 0; i < n; ++i)
+    if (!finite(fy[i]) || !(f[i].lo <= f[i].hi)) return false;
+  for (int i = 0; i < n * n; ++i)
+    if (!finite(jx[i]) || !(J[i].lo <= J[i].hi)) return false;
+  if (n <= 4) return krawczyk_core<4>(n, y.begin(), fy.begin(), jx.begin(), X, K);
+  return krawczyk_core<Eigen::Dynamic>(n, y.begin(), fy.begin(), jx.begin(), X, K);
 }
 
 bool strictly_inside(const Box& K, const Box& X) {
@@ -412,6 +441,10 @@ struct Attempt {
   std::optional<Box> root, region;
 };
 
+// Phases A and B for the operator op(X, K) (false: not evaluated) of a system in n unknowns.
+template <class Op>
+Attempt attempt_with(int n, const Box& input, const KrawczykOptions& options, const Op& op);
+
 Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, const KrawczykOptions& options) {
   const int n = S.n;
   if (static_cast<int>(input.size()) != n)
@@ -425,7 +458,11 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, con
   for (const auto& i : U)
     if (!i.is_finite() || !(i.lo <= i.hi))
       throw std::invalid_argument("parameter box intervals must be finite with lo <= hi");
+  return attempt_with(n, input, options, [&](const Box& X, Box& K) { return krawczyk_operator(S, U, X, K); });
+}
 
+template <class Op>
+Attempt attempt_with(int n, const Box& input, const KrawczykOptions& options, const Op& op) {
   Attempt a;
   a.box = input;
   Box& X = a.box;
@@ -433,7 +470,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, con
   // Phase A: contraction X <- K(X) n X. Every root of F in X lies in K(X).
   for (int it = 0; it < options.max_iterations; ++it) {
     a.iterations = it + 1;
-    if (!krawczyk_operator(S, U, X, K)) break;
+    if (!op(X, K)) break;
     if (boxes_disjoint(K, X)) {
       a.status = RootStatus::no_root;
       a.box = input;
@@ -476,7 +513,7 @@ Attempt attempt(const SquareSystem::Impl& S, const Box& U, const Box& input, con
         B[i] = {std::min(c - r, X[i].lo), std::max(c + r, X[i].hi)};
       }
     }
-    if (!krawczyk_operator(S, U, B, K)) break;
+    if (!op(B, K)) break;
     if (strictly_inside(K, B)) {
       a.root = K;
       a.region = B;
@@ -502,6 +539,17 @@ KrawczykResult to_result(Attempt a) {
 }
 
 }  // namespace
+
+KrawczykResult krawczyk(const EnclosedFunction& F, const Box& box, const KrawczykOptions& options) {
+  const int n = F.size();
+  if (n < 1) throw std::invalid_argument("an enclosed function needs at least one equation");
+  if (static_cast<int>(box.size()) != n)
+    throw std::invalid_argument("box has dimension " + std::to_string(box.size()) + ", the system has " +
+                                std::to_string(n) + " unknowns");
+  for (const auto& i : box)
+    if (!i.is_finite() || !(i.lo <= i.hi)) throw std::invalid_argument("box intervals must be finite with lo <= hi");
+  return to_result(attempt_with(n, box, options, [&](const Box& X, Box& K) { return krawczyk_operator(F, X, K); }));
+}
 
 KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options) {
   return to_result(attempt(system.impl(), Box{}, box, options));

@@ -169,6 +169,23 @@ struct KrawczykResult {
 // intervals.
 KrawczykResult krawczyk(const SquareSystem& system, const Box& box, const KrawczykOptions& options = {});
 
+// A square system F: R^n -> R^n known through enclosures only, e.g. a family of C^1 functions
+// with coefficients in intervals, as ParametricSystem::from_enclosures: values() encloses F(y) at
+// a point y and jacobian() dF_i/dx_j over a box X (row-major, n x n), each for every F the
+// family stands for, outward rounded whatever the caller's rounding mode; false when it cannot
+// (nothing is then concluded). krawczyk() then answers for every F of the family at once (for
+// each, K(X) lies in the operator computed from the enclosures).
+class EnclosedFunction {
+ public:
+  virtual ~EnclosedFunction() = default;
+  virtual int size() const = 0;
+  virtual bool values(std::span<const double> y, std::span<Interval> f) const = 0;
+  virtual bool jacobian(const Box& X, std::span<Interval> J) const = 0;
+};
+// As krawczyk(SquareSystem) (same phases, same operator), for F on `box` (every F of the family
+// C^1 there). Throws std::invalid_argument as it does.
+KrawczykResult krawczyk(const EnclosedFunction& F, const Box& box, const KrawczykOptions& options = {});
+
 // The parametric Krawczyk test: unique_root means that for EVERY u in `parameters` exactly one
 // root of G(u, .) lies in `box`, and it lies in the result's box; no_root means that no u in
 // `parameters` has a root in `box`; undecided: the result's box holds every root in `box` of

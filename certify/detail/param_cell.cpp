@@ -8,6 +8,7 @@
 #include <map>
 #include <unordered_set>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "certify/detail/cell_checks.hpp"
@@ -442,6 +443,43 @@ struct Separable {
   }
 };
 
+// {s_q = 0 : q in S} for Separable s_q as an exact::EnclosedFunction (Krawczyk's rows on a flat
+// torus): s_q(y) enclosed at the point y, and ds_q/dv_i = N(v_i) / (1 + v_i^2)^2 over the box
+// (Separable's U'). Each s_q the enclosures stand for is smooth on R^m (1 + t^2 >= 1).
+class SeparableSystem final : public exact::EnclosedFunction {
+ public:
+  SeparableSystem(const std::vector<Separable>& all, std::span<const int> S) {
+    for (int i : S) rows_.push_back(&all[i]);
+  }
+  int size() const override { return static_cast<int>(rows_.size()); }
+  bool values(std::span<const double> y, std::span<Interval> f) const override {
+    exact::UpwardRounding up;
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const Separable& s = *rows_[r];
+      IA v = s.k;
+      for (int i = 0; i < s.m; ++i) {
+        const IA t(y[i]), t2 = exact::square(t);
+        v += (s.a[i] * t2 + s.b[i] * t) / (IA(1) + t2);
+      }
+      f[r] = exact::to_interval(v);
+    }
+    return true;
+  }
+  bool jacobian(const Box& X, std::span<Interval> J) const override {
+    exact::UpwardRounding up;
+    const int n = size();
+    for (int i = 0; i < n; ++i) {
+      const IA T(X[i].lo, X[i].hi), T2 = exact::square(T), one_minus = IA(1) - T2, two_t = IA(2) * T,
+          q2 = exact::square(IA(1) + T2);
+      for (int r = 0; r < n; ++r) J[r * n + i] = exact::to_interval((rows_[r]->b[i] * one_minus + rows_[r]->a[i] * two_t) / q2);
+    }
+    return true;
+  }
+
+ private:
+  std::vector<const Separable*> rows_;
+};
+
 struct Work {
   Box V;
   exact::SmallVector<int, 16> S;  // positions in cands_ of the candidates other than p
@@ -532,7 +570,7 @@ class QuadraticModel {
 // (d_i, p_i: the pair of circle i; (1 - t^2) / (1 + t^2) = 1 - 2 t^2 / (1 + t^2)): a Separable
 // model of s_q itself (no denominator). |phi - p|^2 likewise with d = p (|phi_i|^2 = r_i^2), k =
 // sum_i |r_i n_i - p_i|^2, and each coordinate r n + U(-2 r n, 2 r n'; t). Krawczyk's rows are
-// s_q D with D = prod_i (1 + v_i^2) > 0 (same zeros), a polynomial of degree 2 in each variable.
+// the s_q themselves (SeparableSystem).
 class TorusModel {
  public:
   using F = Separable;
@@ -566,15 +604,6 @@ class TorusModel {
       for (int j = 0; j < 2; ++j) s.k -= IA(2) * d[2 * i + j] * (r_[i] * n_[i][j] - IA(p_[2 * i + j]));
     return s;
   }
-  EnclosedPolynomial polynomial(std::span<const double> q) const {
-    exact::UpwardRounding up;
-    const F s = candidate(q);
-    const Basis& B = basis(m_);
-    std::vector<EnclosedPolynomial> terms{B.D.scaled(exact::to_interval(s.k))};
-    for (int i = 0; i < m_; ++i)
-      terms.push_back(B.sq[i].scaled(exact::to_interval(s.a[i]))), terms.push_back(B.lin[i].scaled(exact::to_interval(s.b[i])));
-    return EnclosedPolynomial::sum(terms, m_);
-  }
   void image(const SeparableFrame& B, Box* X, IA* d2) const {
     if (X) {
       X->resize(2 * m_);
@@ -607,33 +636,6 @@ class TorusModel {
   std::array<double, 3> h_{0, 0, 0};
   std::array<std::array<IA, 2>, 3> n_{};
   F dist2_;
-  // D and, per variable i, v_i^2 D / (1 + v_i^2) and v_i D / (1 + v_i^2): exact, built once per m.
-  struct Basis {
-    EnclosedPolynomial D;
-    std::vector<EnclosedPolynomial> sq, lin;
-  };
-  static const Basis& basis(int m) {
-    static const std::array<Basis, 4> all = [] {
-      std::array<Basis, 4> b;
-      for (int m = 1; m <= 3; ++m) {
-        const Polynomial one = Polynomial::constant(1, m);
-        auto rest = [&](int skip) {
-          Polynomial r = one;
-          for (int j = 0; j < m; ++j)
-            if (j != skip) r = r * (one + Polynomial::variable(j, m) * Polynomial::variable(j, m));
-          return r;
-        };
-        b[m].D = EnclosedPolynomial::from_exact(rest(-1));
-        for (int i = 0; i < m; ++i) {
-          const Polynomial v = Polynomial::variable(i, m);
-          b[m].sq.push_back(EnclosedPolynomial::from_exact(v * v * rest(i)));
-          b[m].lin.push_back(EnclosedPolynomial::from_exact(v * rest(i)));
-        }
-      }
-      return b;
-    }();
-    return all[m];
-  }
 };
 
 template <class Model>
@@ -655,8 +657,6 @@ class Analysis final : public ParamCell {
     }
     poly_cache_.resize(cands_.size());
   }
-
-  EnclosedPolynomial polynomial(int i) const { return chart_.polynomial(points_.point(index_[i])); }
 
   double first_pass() override {
     report_.point = p_;
@@ -902,19 +902,24 @@ class Analysis final : public ParamCell {
   // A root proven unique in a tight box around V (rvd.cpp: a vertex on a split plane) decides too.
   bool krawczyk_vertex(const Work& w) {
     const std::vector<int> simplex = simplex_of(w.S);
-    auto it = systems_.find(simplex);
-    if (it == systems_.end()) {
-      std::vector<exact::EnclosedRow> rows;
-      for (int i : w.S) {
-        if (!poly_cache_[i]) poly_cache_[i] = exact::EnclosedRow(polynomial(i));
-        rows.push_back(*poly_cache_[i]);
-      }
-      it = systems_.emplace(simplex, exact::ParametricSystem::from_rows(rows)).first;
-    }
     ++report_.krawczyk_calls;
     for (const auto& i : w.V)
       if (!i.is_finite()) return ++report_.krawczyk_failures, false;
-    const exact::KrawczykResult kr = exact::krawczyk(it->second, Box{}, w.V);
+    exact::KrawczykResult kr;
+    if constexpr (std::is_same_v<F, Separable>) {
+      kr = exact::krawczyk(SeparableSystem(cands_, w.S), w.V);
+    } else {
+      auto it = systems_.find(simplex);
+      if (it == systems_.end()) {
+        std::vector<exact::EnclosedRow> rows;
+        for (int i : w.S) {
+          if (!poly_cache_[i]) poly_cache_[i] = exact::EnclosedRow(chart_.polynomial(points_.point(index_[i])));
+          rows.push_back(*poly_cache_[i]);
+        }
+        it = systems_.emplace(simplex, exact::ParametricSystem::from_rows(rows)).first;
+      }
+      kr = exact::krawczyk(it->second, Box{}, w.V);
+    }
     bool nearby = kr.status == exact::RootStatus::undecided && kr.nearby_root;
     for (std::size_t i = 0; nearby && i < w.V.size(); ++i) nearby = (*kr.nearby_root)[i].width() <= w.V[i].width() / 8;
     if (kr.status == exact::RootStatus::undecided && !nearby) {

@@ -165,8 +165,8 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // cells whose bound the shared covering target left loose, ~120 lines in certify.cpp) took it to
   // 8667: 8690. Flat tori in circle charts (issue 11: param_cell's separable model with its range
   // argument, the circle charts and their lemma, the analysis made generic over the chart, ~270
-  // lines) took the refined T^3's Del_RM from 62 to 28 CPU-s and coarse T^3 samples from minutes
-  // to a second: 8946, so 8970.
+  // lines, Krawczyk on the separable rows through exact::EnclosedFunction) took the refined T^3's
+  // Del_RM from 62 to 24 CPU-s and coarse T^3 samples from minutes to a second: 8951, so 8970.
   EXPECT_LT(check_directory("certify", kAllowedInCertify), 8970) << "certify/ should stay small enough to read whole";
 }
 

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
 #include "exact/number_types.hpp"
 #include "support.hpp"
@@ -150,6 +151,55 @@ TEST(EnclosedPolynomial, SystemsFromSharedRowsDecideLikeFromEnclosures) {
   EXPECT_EQ(krawczyk(shared, Box{}, Box{{1.5, 2.0}, {0.0, 0.5}}).status, RootStatus::no_root);
   EXPECT_THROW(ParametricSystem::from_rows(std::vector<EnclosedRow>{rows[0]}), std::invalid_argument);  // 2 variables, 1 row
   EXPECT_THROW(ParametricSystem::from_rows(std::vector<EnclosedRow>{}), std::invalid_argument);
+}
+
+// The same two circles as an EnclosedFunction (values and Jacobian from their own enclosures, the
+// first row's constant widened to [-4 - w, -4 + w]): Krawczyk decides as the polynomial system
+// where w = 0, keeps deciding for the whole family when w is small, and concludes nothing when the
+// function gives no enclosure.
+struct TwoCircles final : EnclosedFunction {
+  double w = 0;
+  bool give = true;
+  int size() const override { return 2; }
+  bool values(std::span<const double> y, std::span<Interval> f) const override {
+    if (!give) return false;
+    const IntervalNumber x(y[0]), z(y[1]);
+    UpwardRounding up;
+    f[0] = to_interval(square(x) + square(z) - IntervalNumber(4 - w, 4 + w));
+    f[1] = to_interval(square(x) - IntervalNumber(2) * x + square(z) - IntervalNumber(3));
+    return true;
+  }
+  bool jacobian(const Box& X, std::span<Interval> J) const override {
+    UpwardRounding up;
+    const IntervalNumber x(X[0].lo, X[0].hi), z(X[1].lo, X[1].hi);
+    J[0] = to_interval(IntervalNumber(2) * x), J[1] = to_interval(IntervalNumber(2) * z);
+    J[2] = to_interval(IntervalNumber(2) * x - IntervalNumber(2)), J[3] = to_interval(IntervalNumber(2) * z);
+    return true;
+  }
+};
+
+TEST(EnclosedPolynomial, KrawczykOnAnEnclosedFunctionDecidesLikeThePolynomialSystem) {
+  const ParametricSystem direct = ParametricSystem::from_enclosures(
+      {EnclosedPolynomial::from_exact(Polynomial::parse("x1^2 + x2^2 - 4", 2)),
+       EnclosedPolynomial::from_exact(Polynomial::parse("x1^2 - 2*x1 + x2^2 - 3", 2))},
+      0);
+  TwoCircles F;
+  for (const Box& X : {Box{{0.25, 0.75}, {1.75, 2.0}}, Box{{0.25, 0.75}, {-2.0, -1.75}}, Box{{1.5, 2.0}, {0.0, 0.5}},
+                       Box{{0.0, 1.0}, {-2.0, 2.0}}})
+    EXPECT_EQ(krawczyk(F, X).status, krawczyk(direct, Box{}, X).status);
+  const Box root{{0.25, 0.75}, {1.75, 2.0}};
+  const KrawczykResult r = krawczyk(F, root);
+  ASSERT_EQ(r.status, RootStatus::unique_root);
+  EXPECT_TRUE(r.box[0].contains(0.5));
+  EXPECT_TRUE(r.box[1].contains(std::sqrt(15.0) / 2));
+  F.w = 1e-6;  // a family: one root each, all in the (wider) result
+  const KrawczykResult wide = krawczyk(F, root);
+  ASSERT_EQ(wide.status, RootStatus::unique_root);
+  EXPECT_GT(wide.box[0].width() + wide.box[1].width(), r.box[0].width() + r.box[1].width());
+  F.give = false;
+  EXPECT_EQ(krawczyk(F, root).status, RootStatus::undecided);
+  EXPECT_THROW(krawczyk(F, Box{{0.0, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(krawczyk(F, Box{{1.0, 0.0}, {0.0, 1.0}}), std::invalid_argument);
 }
 
 TEST(EnclosedPolynomial, ParametricSystemFromEnclosuresDecidesLikeTheExactOne) {
