@@ -103,7 +103,7 @@ TEST(ParamCell, TheChartCoversTheBall) {
           Eigen::VectorXd x(N);
           double len = 0;
           std::array<double, 4> q{};
-          for (int i = 0; i < (N == 9 ? 4 : N); ++i) {
+          for (int i = 0; i < (N == 9 || torus ? 4 : N); ++i) {  // (q holds 4: a quaternion or a sphere's N <= 4)
             const double u1 = rng.uniform() + 1e-300, u2 = rng.uniform();
             q[i] = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2), len += q[i] * q[i];
           }
