@@ -63,11 +63,13 @@ Polynomial sum_of_squares(int m) {  // |v|^2
   return s;
 }
 
-std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<const double> p, double r) {
-  const int N = static_cast<int>(g.center.size()), m = N - 1;
-  std::vector<double> u(N);
+// A rational unit vector near the direction of u (none when u is 0 or not finite): with u
+// normalised and k its largest coordinate (sign sk), the inverse stereographic image (pole
+// -sk e_k) of the dyadic w_j = u_j / (1 + sk u_k), exactly unit. The sphere's n, each circle's n_i.
+std::optional<std::vector<mpq_class>> rational_unit_near(std::vector<double> u) {
+  const int N = static_cast<int>(u.size());
   double len = 0;
-  for (int i = 0; i < N; ++i) u[i] = p[i] - g.center[i].get_d(), len = std::hypot(len, u[i]);
+  for (int i = 0; i < N; ++i) len = std::hypot(len, u[i]);
   if (!(len > 0) || !std::isfinite(len)) return std::nullopt;
   int k = 0;
   for (int i = 0; i < N; ++i) {
@@ -75,12 +77,21 @@ std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<cons
     if (std::abs(u[i]) > std::abs(u[k])) k = i;
   }
   const int sk = u[k] < 0 ? -1 : 1;
-  // n: the inverse stereographic image (pole -sk e_k) of w_j = u_j / (1 + sk u_k), exactly unit.
   std::vector<mpq_class> w(N, mpq_class(0)), n(N);
   mpq_class W(0);
   for (int j = 0; j < N; ++j)
     if (j != k) w[j] = dyadic(u[j] / (1 + sk * u[k])), W += w[j] * w[j];
   for (int j = 0; j < N; ++j) n[j] = j == k ? mpq_class(sk * (1 - W) / (1 + W)) : mpq_class(2 * w[j] / (1 + W));
+  return n;
+}
+
+std::optional<RationalChart> sphere_chart(const io::ShapeSpec& g, std::span<const double> p, double r) {
+  const int N = static_cast<int>(g.center.size()), m = N - 1;
+  std::vector<double> u(N);
+  for (int i = 0; i < N; ++i) u[i] = p[i] - g.center[i].get_d();
+  const std::optional<std::vector<mpq_class>> unit = rational_unit_near(std::move(u));
+  if (!unit) return std::nullopt;
+  const std::vector<mpq_class>& n = *unit;
   // E: the columns j != l of H = I - 2 a a^T / |a|^2, a = n + sgn(n_l) e_l (|a|^2 >= 2), which
   // sends -sgn(n_l) e_l to n: orthonormal, orthogonal to n.
   int l = 0;
@@ -124,13 +135,9 @@ std::optional<TorusChart> circle_charts(const io::ShapeSpec& g, std::span<const 
   if (static_cast<int>(p.size()) != 2 * m || m > 3) return std::nullopt;
   TorusChart C;
   for (int i = 0; i < m; ++i) {
-    const double u0 = p[2 * i], u1 = p[2 * i + 1], len = std::hypot(u0, u1);
-    if (!(len > 0) || !std::isfinite(len)) return std::nullopt;
-    const int k = std::abs(u1) > std::abs(u0) ? 1 : 0, sk = (k ? u1 : u0) < 0 ? -1 : 1;
-    // n: the inverse stereographic image (pole -sk e_k) of w = u_j / (1 + sk u_k), exactly unit.
-    const mpq_class w = dyadic((k ? u0 : u1) / len / (1 + sk * (k ? u1 : u0) / len)), W = w * w;
-    std::array<mpq_class, 2> n;
-    n[k] = sk * (1 - W) / (1 + W), n[1 - k] = 2 * w / (1 + W);
+    const std::optional<std::vector<mpq_class>> unit = rational_unit_near({p[2 * i], p[2 * i + 1]});
+    if (!unit) return std::nullopt;
+    const std::array<mpq_class, 2> n{(*unit)[0], (*unit)[1]};
     if (n[0] * n[0] + n[1] * n[1] != 1) throw std::logic_error("restricted cell: the circle chart's direction is not a unit vector");
     exact::UpwardRounding up;
     const std::vector<mpq_class> apex{g.radii[i] * n[0], g.radii[i] * n[1]};
