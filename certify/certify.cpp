@@ -1212,6 +1212,7 @@ Certificate run_certify(const CertifyOptions& o) {
   } else {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
+    ro.expected = &K.simplices;
     // THE GRAPH LEMMA (rvd.cpp) in codimension >= 4 only, where excluding the other sheets box by box
     // (2k searches of a k-dimensional slab) never ends (SO(3)); below, it is as fast and assumes nothing.
     if (spec.reach && N - m >= 4) ro.cell.reach = sqrt_lower(spec.reach->squared);

@@ -271,7 +271,7 @@ IntrinsicDelaunay intrinsic_delaunay_so3(const io::PointSet& points, const Point
     exact::UpwardRounding up;
     std::vector<std::vector<IntervalNumber>> a;
     for (int id : facet) a.emplace_back(y[id].begin(), y[id].end());
-    const double R = circumradius_upper(a, 4);
+    const double R = circumradius_upper(a);
     if (!std::isfinite(R)) return cap;
     cap.radius = (IntervalNumber(4) * exact::sqrt(IntervalNumber(2)) * IntervalNumber(R)).sup() +
                  lifts[facet[0] / 2].delta + delta_max;  // rounded upward

@@ -128,7 +128,7 @@ struct Sphere {
     std::vector<std::vector<IntervalNumber>> a(N, std::vector<IntervalNumber>(N));
     for (int j = 0; j < N; ++j)
       for (int v = 0; v < N; ++v) a[j][v] = R * ui[simplex[j]][v] / ni[simplex[j]];
-    return detail::circumradius_upper(a, N);
+    return detail::circumradius_upper(a);
   }
 };
 

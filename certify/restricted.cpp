@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "certify/detail/parallel.hpp"
+#include "certify/detail/sphere_hull.hpp"
 #include "exact/interval_arithmetic.hpp"
 
 namespace delcert::certify {
@@ -35,6 +36,22 @@ double nearest_distance(const io::PointSet& P, const detail::PointGrid& grid, in
   return grid.diameter();
 }
 
+// The largest circumradius of the m-simplices (m + 1 vertices) of `simplices`; 0 when none.
+double largest_circumradius(const io::PointSet& P, const std::vector<std::vector<int>>& simplices, int m) {
+  exact::UpwardRounding up;
+  double largest = 0;
+  for (const auto& s : simplices) {
+    if (static_cast<int>(s.size()) != m + 1 || m < 1 ||
+        std::any_of(s.begin(), s.end(), [&](int v) { return v < 0 || static_cast<std::size_t>(v) >= P.size(); }))
+      continue;
+    std::vector<std::vector<exact::IntervalNumber>> a;
+    for (int v : s) a.emplace_back(P.point(v).begin(), P.point(v).end());
+    const double R = detail::circumradius_upper(a);
+    if (std::isfinite(R)) largest = std::max(largest, R);
+  }
+  return largest;
+}
+
 }  // namespace
 
 RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& system, const io::PointSet& P,
@@ -43,7 +60,9 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   RestrictedDelaunay R;
   R.cells.resize(n);
   // The first radii: r_p = 2 max(own nearest-neighbour distance, the median one) (the median
-  // keeps a point of a close pair from a radius that its cell would outgrow).
+  // keeps a point of a close pair from a radius that its cell would outgrow), or 5/4 of the
+  // largest circumradius of the expected simplices where smaller (RestrictedDelaunayOptions::expected).
+  const double expected = o.expected ? largest_circumradius(P, *o.expected, system.intrinsic_dimension()) : 0;
   std::vector<double> nn(n);
   detail::parallel_for(n, o.threads, [&](std::size_t p, int) { nn[p] = nearest_distance(P, grid, static_cast<int>(p)); });
   std::vector<double> sorted = nn;
@@ -53,6 +72,7 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   std::vector<double> radius(n);
   for (int p = 0; p < n; ++p) {
     radius[p] = 2 * std::max(nn[p], median);
+    if (expected > 0) radius[p] = std::min(radius[p], 1.25 * expected);
     if (!(radius[p] > 0 && std::isfinite(radius[p]))) radius[p] = grid.diameter();
     // THE GRAPH LEMMA (rvd.cpp) holds out to nearly the reach from p: start inside it when it is used.
     if (o.cell.reach > 0) radius[p] = std::min(radius[p], 0.8 * o.cell.reach);

@@ -53,6 +53,10 @@ struct RestrictedDelaunayOptions {
   int threads = 1;
   int rounds = 4;    // radius increases after the first analysis
   RestrictedCellOptions cell;  // graph_radius is set per round
+  // Work only: the complex under test. Every ball must reach beyond the covering bound (THE COVERING
+  // ARGUMENT), about the largest circumradius of Del_RM's simplices (within 4% on the built-ins'
+  // outputs): first radii are at most 5/4 of it. Too small a ball is only analysed again, larger.
+  const std::vector<std::vector<int>>* expected = nullptr;
   std::function<void(std::size_t, std::size_t)> progress;  // (cells done, cells of the round); for a progress line
 };
 

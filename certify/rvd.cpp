@@ -35,7 +35,7 @@ IA ia(const Interval& i) { return exact::to_interval_number(i); }
 // enclosures of c, 2a and 2b, computed in interval arithmetic from the coordinates (the enclosure
 // of d = q - p holds the exact difference of the two doubles; T_enc, N_enc hold the exact bases),
 // so they hold the exact values; an overflow gives an infinite or NaN bound, which decides nothing.
-// The vertex systems (krawczyk_vertex) take these enclosures too (SquareSystem::with_enclosed_rows).
+// The vertex systems (krawczyk_vertex) take these enclosures too (exact::AffineExtension).
 struct Candidate {
   int index = -1;
   IA c;
@@ -590,14 +590,14 @@ class CellAnalysis {
     return exact::max_affine_upper_bound(F.span(), S.span(), nq);
   }
 
-  // The row s_q = c - 2 a.u - 2 b.h of candidate C, by its enclosures (see Candidate); false when
-  // one overflowed (an infinite or NaN bound).
-  static bool affine_row(const Candidate& C, exact::SquareSystem::AffineEnclosure& row) {
-    row = {Interval{C.c.inf(), C.c.sup()}, {}};
-    for (const IA& a : C.a2) row.linear.push_back({-a.sup(), -a.inf()});
-    for (const IA& b : C.b2) row.linear.push_back({-b.sup(), -b.inf()});
-    return row.constant.is_finite() &&
-           std::all_of(row.linear.begin(), row.linear.end(), [](const Interval& i) { return i.is_finite(); });
+  // Appends the row s_q = c - 2 a.u - 2 b.h of candidate C, by its enclosures (see Candidate), in
+  // exact::AffineExtension's layout; false when one overflowed (an infinite or NaN bound).
+  static bool affine_row(const Candidate& C, std::vector<Interval>& rows) {
+    rows.push_back({C.c.inf(), C.c.sup()});
+    for (const IA& a : C.a2) rows.push_back({-a.sup(), -a.inf()});
+    for (const IA& b : C.b2) rows.push_back({-b.sup(), -b.inf()});
+    return std::all_of(rows.end() - (1 + C.a2.size() + C.b2.size()), rows.end(),
+                       [](const Interval& i) { return i.is_finite(); });
   }
 
   // A FACE POINT for C = {p, q_1..q_j}, j < m (PURITY in rvd.hpp). Krawczyk on the square system
@@ -612,15 +612,15 @@ class CellAnalysis {
   // a point of M: C is in Del_RM(P), with no assumption. A failure concludes nothing.
   bool prove_face(const Box& U, const Box& H, const std::vector<int>& C) {
     const int j = static_cast<int>(C.size()) - 1;
-    std::vector<exact::SquareSystem::AffineEnclosure> rows;
+    std::vector<Interval> rows;
     for (int q : C) {
       if (q == p_) continue;
       const auto it = std::find_if(cands_.begin(), cands_.end(), [&](const Candidate& c) { return c.index == q; });
-      if (it == cands_.end() || !affine_row(*it, rows.emplace_back())) return false;
+      if (it == cands_.end() || !affine_row(*it, rows)) return false;
     }
     for (int A = 0; A < (1 << m_); ++A) {
       if (__builtin_popcount(A) != m_ - j) continue;
-      std::vector<exact::SquareSystem::AffineEnclosure> all = rows;
+      std::vector<Interval> all = rows;
       Box UH = U;
       UH.insert(UH.end(), H.begin(), H.end());
       for (auto& i : UH) {  // (rounded outwards or not, a box is a box)
@@ -633,13 +633,12 @@ class CellAnalysis {
         const double c = U[a].midpoint(), w = U[a].width() / 64;
         UH[a] = Interval{c - w, c + w};
         interior &= UH[a].lo < c && c < UH[a].hi;
-        all.push_back({Interval::point(-c), std::vector<Interval>(m_ + k_, Interval::point(0))});
-        all.back().linear[a] = Interval::point(1);
+        all.push_back(Interval::point(-c));
+        for (int v = 0; v < m_ + k_; ++v) all.push_back(Interval::point(v == a ? 1 : 0));
       }
       if (!interior) continue;
       ++report_.krawczyk_calls;
-      const exact::KrawczykResult kr =
-          exact::krawczyk(exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(all)), UH);
+      const exact::KrawczykResult kr = exact::krawczyk(exact::AffineExtension(chart_.chart_system(), std::move(all)), UH);
       const Box* root = kr.status == exact::RootStatus::unique_root ? &kr.box : kr.nearby_root ? &*kr.nearby_root : nullptr;
       Box X;
       if (root && chart_.image(Box(root->begin(), root->begin() + m_), Box(root->begin() + m_, root->end()), X) &&
@@ -654,23 +653,21 @@ class CellAnalysis {
   // Krawczyk on {G = 0, s_{q_i} = 0} in U x H. True when decided (a vertex recorded, or none).
   bool krawczyk_vertex(const Work& w, const Box& H) {
     const std::vector<int> simplex = simplex_of(w.S);
-    auto it = systems_.find(simplex);
-    if (it == systems_.end()) {
-      // The chart's rows G(u, h) (shared), then s_q = c - 2 a.u - 2 b.h for each q, known by the
-      // candidate's enclosures (which hold the exact values, see Candidate): Krawczyk answers
-      // for every affine row within them, the true one included (SquareSystem::with_enclosed_rows).
-      std::vector<exact::SquareSystem::AffineEnclosure> rows(w.S.size());
-      for (std::size_t i = 0; i < w.S.size(); ++i)
-        if (!affine_row(cands_[w.S[i]], rows[i])) {
-          ++report_.krawczyk_failures;  // an overflow decides nothing
-          return false;
-        }
-      it = systems_.emplace(simplex, exact::SquareSystem::with_enclosed_rows(chart_.chart_system(), std::move(rows))).first;
-    }
+    // The chart's rows G(u, h) (evaluated where they are), then s_q = c - 2 a.u - 2 b.h for each q,
+    // known by the candidate's enclosures (which hold the exact values, see Candidate): Krawczyk
+    // answers for every affine row within them, the true one included (exact::AffineExtension).
+    std::vector<Interval> rows;
+    rows.reserve(w.S.size() * (1 + m_ + k_));
+    for (int i : w.S)
+      if (!affine_row(cands_[i], rows)) {
+        ++report_.krawczyk_failures;  // an overflow decides nothing
+        return false;
+      }
+    const exact::AffineExtension system(chart_.chart_system(), std::move(rows));
     Box UH = w.U;
     UH.insert(UH.end(), H.begin(), H.end());
     ++report_.krawczyk_calls;
-    const exact::KrawczykResult kr = exact::krawczyk(it->second, UH);
+    const exact::KrawczykResult kr = exact::krawczyk(system, UH);
     // A tight root (each side at most 1/8 of the box's; else splitting gives a sharper one) proved
     // unique around this box decides it too (it holds that root or none): a vertex on a split plane.
     bool nearby = kr.status == exact::RootStatus::undecided && kr.nearby_root;
@@ -714,7 +711,6 @@ class CellAnalysis {
   std::vector<IA> sel_coef_;                     // the selector's coefficients, enclosed
   double lemma_bound_ = 0;                       // THE GRAPH LEMMA's 2 tau cos Θ (0: not used)
   Box zero_u_;                                   // m times [0, 0]
-  std::map<std::vector<int>, exact::SquareSystem> systems_;
   static constexpr int kFaceTries = 4;
   std::map<std::vector<int>, int> face_failures_;  // failed FACE POINT searches, per face
   RestrictedCellReport report_;

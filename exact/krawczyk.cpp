@@ -22,13 +22,10 @@ using detail::IA;
 // between the systems that hold it (SquareSystem(head, tail) shares the head's rows). Every row
 // is evaluated from an EnclosedPolynomial e: an exact row keeps its exact polynomial p (for its
 // exact derivatives and equations()) and e = its coefficients enclosed, in p's term order; an
-// ENCLOSED row (ParametricSystem::from_enclosures) has e only; an ENCLOSED AFFINE row
-// (SquareSystem::with_enclosed_rows) has coef: coef[0] encloses its constant and coef[1 + j] its
-// coefficient of variable j (a derivative row of it is the constant coef[0] alone).
+// ENCLOSED row (ParametricSystem::from_enclosures) has e only.
 struct Prepared {
-  enum class Kind { exact, enclosed_affine, enclosed };
+  enum class Kind { exact, enclosed };
   Polynomial p;  // the exact polynomial (empty unless kind == exact)
-  std::vector<Interval> coef;
   Kind kind = Kind::exact;
   EnclosedPolynomial e;
 };
@@ -49,17 +46,12 @@ namespace {
 
 PreparedPtr prepare_enclosed(EnclosedPolynomial e, Polynomial p = Polynomial(),
                              Prepared::Kind kind = Prepared::Kind::enclosed) {
-  return std::make_shared<const Prepared>(Prepared{std::move(p), {}, kind, std::move(e)});
+  return std::make_shared<const Prepared>(Prepared{std::move(p), kind, std::move(e)});
 }
 
 PreparedPtr prepare(Polynomial p) {
   EnclosedPolynomial e = EnclosedPolynomial::from_exact(p);
   return prepare_enclosed(std::move(e), std::move(p), Prepared::Kind::exact);
-}
-
-PreparedPtr prepare_enclosed(std::vector<Interval> coef) {
-  return std::make_shared<const Prepared>(
-      Prepared{Polynomial(), std::move(coef), Prepared::Kind::enclosed_affine, EnclosedPolynomial()});
 }
 
 // Encloses x^e (e >= 1) over the interval x: x^e = (x^(e/2))^2 for even e (CGAL's square: the
@@ -77,11 +69,6 @@ IA power(const IA& x, std::uint32_t e) {
 // summed in interval arithmetic, so by inclusion isotonicity the result encloses the value of
 // each of them on the box.
 IA evaluate(const PreparedPtr& p, std::span<const IA> x) {
-  if (p->kind == Prepared::Kind::enclosed_affine) {
-    IA acc = detail::to_ia(p->coef[0]);
-    for (std::size_t j = 1; j < p->coef.size(); ++j) acc += detail::to_ia(p->coef[j]) * x[j - 1];
-    return acc;
-  }
   const EnclosedPolynomial& e = p->e;
   IA sum(0);
   for (std::size_t i = 0; i < e.size(); ++i) {
@@ -176,28 +163,6 @@ SquareSystem::SquareSystem(const ParametricSystem& head, std::vector<Polynomial>
   impl_ = std::move(impl);
 }
 
-SquareSystem SquareSystem::with_enclosed_rows(const ParametricSystem& head, std::vector<AffineEnclosure> tail) {
-  const SquareSystem::Impl& H = head.impl();
-  const int n = H.n + static_cast<int>(tail.size()), vars = H.m + H.n;
-  if (n != vars)
-    throw std::invalid_argument("square system: " + std::to_string(H.n) + " + " + std::to_string(tail.size()) +
-                                " equations in " + std::to_string(vars) + " variables");
-  auto impl = shared_head(H, n);
-  for (auto& row : tail) {
-    if (static_cast<int>(row.linear.size()) != n)
-      throw std::invalid_argument("square system: an affine row has " + std::to_string(row.linear.size()) +
-                                  " coefficients, expected " + std::to_string(n));
-    std::vector<Interval> coef{row.constant};
-    coef.insert(coef.end(), row.linear.begin(), row.linear.end());
-    for (const Interval& c : coef)
-      if (!(std::isfinite(c.lo) && std::isfinite(c.hi) && c.lo <= c.hi))
-        throw std::invalid_argument("square system: an affine row has a non-finite or empty coefficient enclosure");
-    for (int j = 0; j < n; ++j) impl->df.push_back(prepare_enclosed({row.linear[j]}));
-    impl->f.push_back(prepare_enclosed(std::move(coef)));
-  }
-  return SquareSystem(std::shared_ptr<const Impl>(std::move(impl)));
-}
-
 ParametricSystem ParametricSystem::from_enclosures(std::vector<EnclosedPolynomial> equations, int num_parameters) {
   const int n = static_cast<int>(equations.size()), m = num_parameters;
   if (n < 1) throw std::invalid_argument("a parametric system needs at least one equation");
@@ -272,6 +237,55 @@ Interval ParametricSystem::enclose_derivative(int i, int j, std::span<const Inte
   if (i < 0 || i >= impl_->n || j < 0 || j >= impl_->n || static_cast<int>(z.size()) != impl_->m + impl_->n)
     throw std::invalid_argument("parametric system: no such derivative, or a box of the wrong dimension");
   return enclose_row(impl_->df[i * impl_->n + j], z);
+}
+
+Interval ParametricSystem::enclose_parameter_derivative(int i, int a, std::span<const Interval> z) const {
+  if (i < 0 || i >= impl_->n || a < 0 || a >= impl_->m || static_cast<int>(z.size()) != impl_->m + impl_->n)
+    throw std::invalid_argument("parametric system: no such parameter derivative, or a box of the wrong dimension");
+  return enclose_row(impl_->du[i * impl_->m + a], z);
+}
+
+AffineExtension::AffineExtension(const ParametricSystem& head, std::vector<Interval> tail)
+    : head_(head), tail_(std::move(tail)), n_(head.size() + head.num_parameters()), k_(head.size()) {
+  const std::size_t width = 1 + static_cast<std::size_t>(n_), rows = static_cast<std::size_t>(head.num_parameters());
+  if (tail_.size() != rows * width)
+    throw std::invalid_argument("square system: " + std::to_string(head.num_parameters()) + " affine rows of " +
+                                std::to_string(width) + " coefficient enclosures expected, got " +
+                                std::to_string(tail_.size()) + " enclosures");
+  for (const Interval& c : tail_)
+    if (!(std::isfinite(c.lo) && std::isfinite(c.hi) && c.lo <= c.hi))
+      throw std::invalid_argument("square system: an affine row has a non-finite or empty coefficient enclosure");
+}
+
+// The head's rows as ParametricSystem::enclose evaluates them (the evaluation SquareSystem(head,
+// ...) uses too); a tail row c + l . y under upward rounding, each coefficient's enclosure times
+// the exact y_j: an enclosure of the row's value for every c, l in them.
+bool AffineExtension::values(std::span<const double> y, std::span<Interval> f) const {
+  SmallBuffer<Interval, 16> z(n_);
+  for (int v = 0; v < n_; ++v) z[v] = Interval::point(y[v]);
+  for (int i = 0; i < k_; ++i) f[i] = head_.enclose(i, z.span());
+  detail::EnsureUpward guard;
+  for (int i = k_; i < n_; ++i) {
+    const Interval* row = &tail_[static_cast<std::size_t>(i - k_) * (1 + n_)];
+    IA acc = detail::to_ia(row[0]);
+    for (int j = 0; j < n_; ++j) acc += detail::to_ia(row[1 + j]) * IA(y[j]);
+    if (!finite(acc)) return false;
+    f[i] = detail::from_ia(acc);
+  }
+  return true;
+}
+
+// Head row i: its parameter derivatives, then its unknowns' (variable order), over X; a tail
+// row's derivatives are its coefficients' enclosures.
+bool AffineExtension::jacobian(const Box& X, std::span<Interval> J) const {
+  const int m = n_ - k_;
+  for (int i = 0; i < k_; ++i) {
+    for (int a = 0; a < m; ++a) J[i * n_ + a] = head_.enclose_parameter_derivative(i, a, X);
+    for (int j = 0; j < k_; ++j) J[i * n_ + m + j] = head_.enclose_derivative(i, j, X);
+  }
+  for (int i = k_; i < n_; ++i)
+    for (int j = 0; j < n_; ++j) J[i * n_ + j] = tail_[static_cast<std::size_t>(i - k_) * (1 + n_) + 1 + j];
+  return true;
 }
 
 int SquareSystem::size() const { return impl_->n; }

@@ -71,23 +71,7 @@ class SquareSystem {
   // vertex systems of one cell all start with the chart's equations). Throws
   // std::invalid_argument unless tail has m equations in m + n variables.
   SquareSystem(const ParametricSystem& head, std::vector<Polynomial> tail);
-  // As the constructor above, with tail rows known only by ENCLOSURES of their coefficients: row
-  // i is some affine function c_i + l_i . z (z the m + n variables) with c_i in `constant` and
-  // each l_ij in `linear[j]`. krawczyk() then answers for EVERY such choice at once (every claim below holds
-  // for each of them, hence for the true one): for a fixed choice, its rows' values and
-  // derivatives lie in the interval evaluations used (inclusion isotonicity), so its own
-  // Krawczyk operator, with the same centre and preconditioner, lies inside the computed one, and
-  // the argument of the parametric version below applies unchanged. (The restricted Voronoi
-  // vertex systems: the equidistance rows are enclosed from the doubles of the points, with no
-  // rational arithmetic.) Throws std::invalid_argument unless tail has m rows of m + n finite,
-  // non-empty coefficients.
-  struct AffineEnclosure {
-    Interval constant;
-    std::vector<Interval> linear;
-  };
-  static SquareSystem with_enclosed_rows(const ParametricSystem& head, std::vector<AffineEnclosure> tail);
   int size() const;
-  // Throws std::logic_error for a system with enclosed affine rows (it has no exact equations).
   std::vector<Polynomial> equations() const;
 
   struct Impl;
@@ -119,7 +103,7 @@ class ParametricSystem {
   ParametricSystem(std::vector<Polynomial> equations, int num_parameters);
   // The same from polynomials known by coefficient enclosures (exact/enclosed_polynomial.hpp):
   // krawczyk() answers for every polynomial system they stand for at once, by the argument of
-  // SquareSystem::with_enclosed_rows (their derivatives are enclosed the same way). equations()
+  // AffineExtension (their derivatives are enclosed the same way). equations()
   // then throws std::logic_error. Throws std::invalid_argument as the constructor.
   static ParametricSystem from_enclosures(std::vector<EnclosedPolynomial> equations, int num_parameters);
   // from_enclosures(equations of the rows, 0), without preparing the rows again. Throws
@@ -133,6 +117,8 @@ class ParametricSystem {
   // then unknowns). The interval evaluation Krawczyk itself uses.
   Interval enclose(int i, std::span<const Interval> z) const;
   Interval enclose_derivative(int i, int j, std::span<const Interval> z) const;
+  // ... and of its derivative in parameter a (variable a).
+  Interval enclose_parameter_derivative(int i, int a, std::span<const Interval> z) const;
 
   const SquareSystem::Impl& impl() const { return *impl_; }
 
@@ -185,6 +171,30 @@ class EnclosedFunction {
 // As krawczyk(SquareSystem) (same phases, same operator), for F on `box` (every F of the family
 // C^1 there). Throws std::invalid_argument as it does.
 KrawczykResult krawczyk(const EnclosedFunction& F, const Box& box, const KrawczykOptions& options = {});
+
+// The square system of head's n equations, its m parameters and n unknowns all taken as unknowns
+// (in that variable order, z = (u, x)), followed by m affine rows known only by ENCLOSURES of
+// their coefficients: row i is some c_i + l_i . z, with c_i in tail[i (1 + m + n)] and l_ij in
+// tail[i (1 + m + n) + 1 + j]. The family is every such choice of rows (with the head's own
+// equations, enclosed as head.enclose does): krawczyk() answers for each of them at once, the
+// true one included (for a fixed choice, its rows' values and derivatives lie in the interval
+// evaluations used, by inclusion isotonicity). The restricted Voronoi vertex systems: the
+// chart's equations, then the equidistance rows enclosed from the doubles of the points, with no
+// rational arithmetic. Nothing is prepared (the head's rows are evaluated where they are): cheap
+// to build, one per candidate vertex. Throws std::invalid_argument unless tail holds m rows of
+// 1 + m + n finite, non-empty intervals.
+class AffineExtension final : public EnclosedFunction {
+ public:
+  AffineExtension(const ParametricSystem& head, std::vector<Interval> tail);
+  int size() const override { return n_; }
+  bool values(std::span<const double> y, std::span<Interval> f) const override;
+  bool jacobian(const Box& X, std::span<Interval> J) const override;
+
+ private:
+  ParametricSystem head_;
+  std::vector<Interval> tail_;
+  int n_ = 0, k_ = 0;  // n_ = m + n unknowns in all, k_ = the head's n
+};
 
 // The parametric Krawczyk test: unique_root means that for EVERY u in `parameters` exactly one
 // root of G(u, .) lies in `box`, and it lies in the result's box; no_root means that no u in

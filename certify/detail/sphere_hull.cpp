@@ -11,8 +11,8 @@ namespace delcert::certify::detail {
 
 using exact::IntervalNumber;
 
-double circumradius_upper(const std::vector<std::vector<IntervalNumber>>& a, int D) {
-  const int k = D - 1;  // the simplex's dimension
+double circumradius_upper(const std::vector<std::vector<IntervalNumber>>& a) {
+  const int k = static_cast<int>(a.size()) - 1, D = static_cast<int>(a[0].size());  // k: the simplex's dimension
   std::vector<std::vector<IntervalNumber>> e(k, std::vector<IntervalNumber>(D));
   for (int j = 0; j < k; ++j)
     for (int v = 0; v < D; ++v) e[j][v] = a[j + 1][v] - a[0][v];

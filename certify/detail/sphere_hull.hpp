@@ -66,10 +66,11 @@ T laplace(const std::vector<const T*>& rows, int col, int k) {
 
 inline int sign_of(const exact::IntervalNumber& x) { return x.inf() > 0 ? 1 : x.sup() < 0 ? -1 : 0; }
 
-// A certified upper bound of the circumradius of the D points a[0..D) of R^D (each D
-// enclosures), +inf when not bounded: the Gram system of the edge vectors solved by Cramer's rule
-// in intervals (+inf when its determinant's enclosure is not > 0). Call under UpwardRounding.
-double circumradius_upper(const std::vector<std::vector<exact::IntervalNumber>>& a, int D);
+// A certified upper bound of the circumradius of the k + 1 points a[0..k] of R^D (each D
+// enclosures, 1 <= k <= D), +inf when not bounded: the Gram system of the edge vectors solved by
+// Cramer's rule in intervals (+inf when its determinant's enclosure is not > 0). Call under
+// UpwardRounding.
+double circumradius_upper(const std::vector<std::vector<exact::IntervalNumber>>& a);
 
 struct LiftedSphere {
   int D = 0;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "certify/certify.hpp"
@@ -82,7 +83,8 @@ TEST(RestrictedChecks, CoveringClaimIsDecidedEitherWay) {
                                          R"({"format": "delcert-claims v2", "covering": ")" + claim + "\"}");
     return entry(c, CheckId::covering);
   };
-  EXPECT_EQ(verdict_for("1").verdict, Verdict::certified);
+  const CheckEntry high = verdict_for("1");
+  EXPECT_EQ(high.verdict, Verdict::certified);
   const CheckEntry low = verdict_for("0.9");
   ASSERT_EQ(low.verdict, Verdict::refuted);
   ASSERT_FALSE(low.witnesses.empty());
@@ -101,8 +103,15 @@ TEST(RestrictedChecks, CoveringClaimIsDecidedEitherWay) {
       EXPECT_GT(d2, 0.9 * 0.9 * (1 - 1e-12)) << q;
     }
   }
-  // Between the two certified bounds nothing is decided.
-  EXPECT_EQ(verdict_for("0.93").verdict, Verdict::undecided);
+  // Between the two certified bounds nothing is decided (the vertex at (1, 1, 1)/sqrt(3) is at
+  // distance sqrt(2 - 2/sqrt(3)) = 0.91940 from its points; the upper bound depends on the boxes).
+  const double lower = std::stod(high.margin["covering_radius"]["certified_lower_bound"].get<std::string>()),
+               upper = std::stod(high.margin["covering_radius"]["certified_upper_bound"].get<std::string>());
+  EXPECT_NEAR(lower, 0.919401686761965, 1e-12);
+  ASSERT_LT(lower, upper);
+  char between[64];
+  std::snprintf(between, sizeof between, "%.17g", (lower + upper) / 2);
+  EXPECT_EQ(verdict_for(between).verdict, Verdict::undecided) << between;
 }
 
 // Del_TM = Del_RM on a good sample of S^2, certified.

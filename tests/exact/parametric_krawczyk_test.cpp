@@ -104,43 +104,45 @@ TEST(ParametricKrawczyk, HugeAndTinyMagnitudesAreNeverWrong) {
   }
 }
 
-// SquareSystem::with_enclosed_rows: rows known only by enclosures of their coefficients.
+// AffineExtension: rows known only by enclosures of their coefficients.
 // The answers must hold for EVERY row within them: exact point enclosures reproduce the exact
 // system's answers; a constant whose enclosure admits both a root and none in the box is never
 // decided either way.
 TEST(ParametricKrawczyk, EnclosedAffineRowsAnswerForEveryRowWithinThem) {
   // Head: the circle x^2 + y^2 - 1 = 0 with y as the parameter (variables x1 = y, x2 = x).
   const ParametricSystem circle = parse_parametric({"x2^2 + x1^2 - 1"}, 1);
-  // Tail: y - x/2 = 0, i.e. -0.5 x + 1 y + 0, exactly as enclosures of width 0.
-  using Row = SquareSystem::AffineEnclosure;
-  const SquareSystem enclosed = SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{0, 0}, {{1, 1}, {-0.5, -0.5}}}});
+  // Tail: y - x/2 = 0, i.e. 0 + 1 y - 0.5 x, exactly as enclosures of width 0.
+  const AffineExtension enclosed(circle, {{0, 0}, {1, 1}, {-0.5, -0.5}});
   const SquareSystem exact(circle, {Polynomial::parse("x1 - x2/2", 2)});
   const Box around{{0.35, 0.55}, {0.8, 1.0}};  // (y, x) around (1/sqrt5, 2/sqrt5)
   const auto e = krawczyk(enclosed, around), x = krawczyk(exact, around);
   ASSERT_EQ(e.status, RootStatus::unique_root);
   ASSERT_EQ(x.status, RootStatus::unique_root);
-  for (int i = 0; i < 2; ++i) EXPECT_TRUE(e.box[i].lo <= x.box[i].hi && x.box[i].lo <= e.box[i].hi) << i;
+  // Point enclosures: the same evaluations as the exact system's, so the same boxes, bit for bit.
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(e.box[i].lo, x.box[i].lo) << i;
+    EXPECT_EQ(e.box[i].hi, x.box[i].hi) << i;
+  }
+  EXPECT_EQ(e.iterations, x.iterations);
   // The root x = 2/sqrt(5) lies in the enclosed system's box (checked exactly: x >= 0 there).
   EXPECT_TRUE(to_rational(e.box[1].lo) * to_rational(e.box[1].lo) * 5 <= 4);
   EXPECT_TRUE(to_rational(e.box[1].hi) * to_rational(e.box[1].hi) * 5 >= 4);
   EXPECT_EQ(krawczyk(enclosed, Box{{2, 3}, {2, 3}}).status, RootStatus::no_root);
   // c + y - x/2 = 0 for some c in [-0.6, 0.1]: in the box, c = 0 has the root above and c = -0.6
   // none (y = x/2 + 0.6 >= 1 there); neither answer may be claimed.
-  const SquareSystem wide = SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{-0.6, 0.1}, {{1, 1}, {-0.5, -0.5}}}});
-  const auto w = krawczyk(wide, around);
+  const auto w = krawczyk(AffineExtension(circle, {{-0.6, 0.1}, {1, 1}, {-0.5, -0.5}}), around);
   EXPECT_NE(w.status, RootStatus::unique_root);
   EXPECT_NE(w.status, RootStatus::no_root);
   // y - s x = 0 for s in [0.4, 0.6]: s = 1/2 has its root in the box below, s = 0.4 has it at
   // y = 0.371, outside; not unique either.
-  const SquareSystem sweep = SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{0, 0}, {{1, 1}, {-0.6, -0.4}}}});
-  EXPECT_NE(krawczyk(sweep, Box{{0.38, 0.45}, {0.88, 0.93}}).status, RootStatus::unique_root);
-  // No exact equations; bad shapes and enclosures are refused.
-  EXPECT_THROW(enclosed.equations(), std::logic_error);
-  EXPECT_THROW(SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{0, 0}, {{1, 1}}}}), std::invalid_argument);
-  EXPECT_THROW(SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{0, 0}, {{1, 1}, {0, 0}}}, Row{{0, 0}, {{1, 1}, {0, 0}}}}),
-               std::invalid_argument);
-  EXPECT_THROW(SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{1, 0}, {{1, 1}, {-0.5, -0.5}}}}), std::invalid_argument);
-  EXPECT_THROW(SquareSystem::with_enclosed_rows(circle, std::vector<Row>{Row{{0, INFINITY}, {{1, 1}, {-0.5, -0.5}}}}), std::invalid_argument);
+  EXPECT_NE(krawczyk(AffineExtension(circle, {{0, 0}, {1, 1}, {-0.6, -0.4}}), Box{{0.38, 0.45}, {0.88, 0.93}}).status,
+            RootStatus::unique_root);
+  // Bad shapes and enclosures are refused.
+  using Row = std::vector<Interval>;
+  EXPECT_THROW(AffineExtension(circle, Row{{0, 0}, {1, 1}}), std::invalid_argument);
+  EXPECT_THROW(AffineExtension(circle, Row{{0, 0}, {1, 1}, {0, 0}, {0, 0}, {1, 1}, {0, 0}}), std::invalid_argument);
+  EXPECT_THROW(AffineExtension(circle, Row{{1, 0}, {1, 1}, {-0.5, -0.5}}), std::invalid_argument);
+  EXPECT_THROW(AffineExtension(circle, Row{{0, INFINITY}, {1, 1}, {-0.5, -0.5}}), std::invalid_argument);
   EXPECT_TRUE(rounding_is_nearest());
 }
 
