@@ -122,9 +122,15 @@ double smallest_eigenvalue_bound(const std::vector<mpq_class>& A, std::span<cons
 // The power of two 2^s with max |column entry| * 2^s in [1/2, 1) (1 for a zero column).
 mpq_class column_scale(const std::vector<mpq_class>& M, int rows, int cols, int c) {
   mpq_class big = 0;
-  for (int r = 0; r < rows; ++r) big = std::max(big, mpq_class(abs(M[r * cols + c])));
+  for (int r = 0; r < rows; ++r)
+    if (abs(M[r * cols + c]) > big) big = abs(M[r * cols + c]);
   if (big == 0) return 1;
+  // Start from 2^(bits(den) - bits(num)): big times it lies in (1/2, 2), so at most one step is left.
+  const long e = static_cast<long>(mpz_sizeinbase(big.get_den_mpz_t(), 2)) -
+                 static_cast<long>(mpz_sizeinbase(big.get_num_mpz_t(), 2));
   mpq_class s = 1;
+  if (e >= 0) mpq_mul_2exp(s.get_mpq_t(), s.get_mpq_t(), static_cast<mp_bitcnt_t>(e));
+  else mpq_div_2exp(s.get_mpq_t(), s.get_mpq_t(), static_cast<mp_bitcnt_t>(-e));
   while (big * s >= 1) s /= 2;
   while (big * s < mpq_class(1, 2)) s *= 2;
   return s;

@@ -312,6 +312,25 @@ namespace {
 // +inf); gradual underflow is rounded in the same direction (IEEE directed rounding; the build
 // uses no flush-to-zero). A non-finite bound ends the evaluation (return false), so every box
 // that leaves this function has finite bounds that enclose what they claim.
+// K = y - Y G(U, y) + (I - Y J_x(U, X)) (X - y), all in interval arithmetic, with Y (n x n,
+// column-major) any matrix of doubles.
+bool krawczyk_apply(int n, const double* Y, const double* y, const IA* fy, const IA* jx, const Box& X, Box& K) {
+  K.assign(n, Interval{});
+  detail::EnsureUpward guard;
+  for (int i = 0; i < n; ++i) {
+    IA acc = IA(y[i]);
+    for (int j = 0; j < n; ++j) acc = acc - IA(Y[i + j * n]) * fy[j];
+    for (int j = 0; j < n; ++j) {
+      IA c = IA(i == j ? 1.0 : 0.0);
+      for (int l = 0; l < n; ++l) c = c - IA(Y[i + l * n]) * jx[l * n + j];
+      acc = acc + c * (IA(X[j].lo, X[j].hi) - IA(y[j]));
+    }
+    if (!finite(acc)) return false;
+    K[i] = detail::from_ia(acc);
+  }
+  return true;
+}
+
 // The operator itself from G(U, y) (fy, n) and J_x(U, X) (jx, n x n row-major), both enclosures
 // with finite bounds, at the point y of X.
 template <int MaxN>
@@ -324,26 +343,22 @@ bool krawczyk_core(int n, const double* y, const IA* fy, const IA* jx, const Box
     NearestRounding nearest;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
+    if (n == 1) {
+      // The 1 x 1 case (a hypersurface's chart) without the LU: the same double as Eigen's
+      // FullPivLU inverse (invertible iff 0 < |J| < inf; it solves against the identity by
+      // multiplying with 1 / J), so the same answers, faster.
+      const double j = Jmid(0, 0);
+      if (!(j != 0 && std::isfinite(j))) return false;
+      Y(0, 0) = 1 / j;
+      if (!std::isfinite(Y(0, 0))) return false;
+      return krawczyk_apply(n, Y.data(), y, fy, jx, X, K);
+    }
     Eigen::FullPivLU<Mat> lu(Jmid);
     if (!lu.isInvertible()) return false;
     Y = lu.inverse();
     if (!Y.allFinite()) return false;
   }
-  // K = y - Y G(U, y) + (I - Y J_x(U, X)) (X - y), all in interval arithmetic.
-  K.assign(n, Interval{});
-  detail::EnsureUpward guard;
-  for (int i = 0; i < n; ++i) {
-    IA acc = IA(y[i]);
-    for (int j = 0; j < n; ++j) acc = acc - IA(Y(i, j)) * fy[j];
-    for (int j = 0; j < n; ++j) {
-      IA c = IA(i == j ? 1.0 : 0.0);
-      for (int l = 0; l < n; ++l) c = c - IA(Y(i, l)) * jx[l * n + j];
-      acc = acc + c * (IA(X[j].lo, X[j].hi) - IA(y[j]));
-    }
-    if (!finite(acc)) return false;
-    K[i] = detail::from_ia(acc);
-  }
-  return true;
+  return krawczyk_apply(n, Y.data(), y, fy, jx, X, K);
 }
 
 template <int MaxN>

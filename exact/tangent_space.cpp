@@ -93,7 +93,8 @@ ImplicitSystem::ImplicitSystem(std::vector<Polynomial> equations, int N) {
         // Integer by construction: derivative of an integer-coefficient polynomial.
         coefs.push_back(detail::to_ex(t.coefficient.get_num()));
       }
-      impl->jacobian_double.emplace_back(f.is_zero() ? Polynomial(N) : f.derivative(j));
+      impl->derivatives.push_back(f.is_zero() ? Polynomial(N) : f.derivative(j));
+      impl->jacobian_double.emplace_back(impl->derivatives.back());
       impl->jacobian_coefficients.push_back(std::move(coefs));
       impl->jacobian.push_back(std::move(d));
     }
@@ -134,9 +135,8 @@ std::vector<mpq_class> ImplicitSystem::jacobian_exact(std::span<const double> x)
   if (static_cast<int>(x.size()) != impl_->N) throw std::invalid_argument("point has the wrong dimension");
   auto xq = to_rational(x);
   std::vector<mpq_class> out;
-  for (const auto& f : impl_->equations)
-    for (int j = 0; j < impl_->N; ++j)
-      out.push_back(f.is_zero() ? mpq_class(0) : f.derivative(j).evaluate(std::span<const mpq_class>(xq)));
+  out.reserve(impl_->derivatives.size());
+  for (const auto& d : impl_->derivatives) out.push_back(d.evaluate(std::span<const mpq_class>(xq)));
   return out;
 }
 

@@ -14,6 +14,7 @@ struct ImplicitSystem::Impl {
   int N = 0;  // ambient dimension
   int k = 0;  // codimension
   std::vector<Polynomial> equations;
+  std::vector<Polynomial> derivatives;  // dF_i/dx_j, k x N row-major (jacobian_exact)
   // J_i,j = d(D_i F_i)/dx_j with D_i the common denominator of F_i's coefficients: integer
   // coefficients (row scaling does not change ker J). k x N row-major.
   std::vector<Polynomial> jacobian;
