@@ -281,6 +281,50 @@ TEST(RestrictedChecks, ACellOutOfBoxesNearlyDoneIsRetriedWithALargerBudget) {
               small.rounds_used);
 }
 
+// The expected complex only picks the first radii: the true one (first radii about 5/4 of the
+// covering radius, one round), a wrong one whose largest triangle is tiny (first radii below the
+// covering radius: every cell is analysed again) and one with a huge triangle (the old radii)
+// give the same Del_RM and a certified covering bound, never below the farthest vertex.
+TEST(RestrictedChecks, TheExpectedComplexChangesOnlyTheWork) {
+  const io::PointSet P = spread_sphere(3, 60, 0.3, 11);
+  const exact::ImplicitSystem F = exact::ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3);
+  const detail::PointGrid grid(P, 2);
+  RestrictedDelaunayOptions o;
+  const RestrictedDelaunay plain = compute_restricted_delaunay(F, P, grid, o);
+  ASSERT_TRUE(plain.covering_certified) << plain.reason;
+  std::vector<std::vector<int>> truth, tiny, huge;
+  for (const auto& s : plain.simplices) truth.push_back(s.simplex);
+  auto d2 = [&](int i, int j) {
+    double d = 0;
+    for (int v = 0; v < 3; ++v) d += std::pow(P.point(i)[v] - P.point(j)[v], 2);
+    return d;
+  };
+  int a = 0, b = 1, c = 2;  // the closest pair and the point nearest to both: a small triangle
+  for (int i = 0; i < static_cast<int>(P.size()); ++i)
+    for (int j = i + 1; j < static_cast<int>(P.size()); ++j)
+      if (d2(i, j) < d2(a, b)) a = i, b = j;
+  for (int i = 0; i < static_cast<int>(P.size()); ++i)
+    if (i != a && i != b && (c == a || c == b || std::max(d2(i, a), d2(i, b)) < std::max(d2(c, a), d2(c, b)))) c = i;
+  tiny.push_back({a, b, c});
+  huge.push_back({0, 1, 2});
+  huge.push_back(truth[0]);
+  for (auto* expected : {&truth, &tiny, &huge}) {
+    o.expected = expected;
+    const RestrictedDelaunay R = compute_restricted_delaunay(F, P, grid, o);
+    EXPECT_TRUE(R.covering_certified) << R.reason;
+    ASSERT_EQ(R.simplices.size(), plain.simplices.size());
+    for (std::size_t i = 0; i < R.simplices.size(); ++i) EXPECT_EQ(R.simplices[i].simplex, plain.simplices[i].simplex);
+    EXPECT_GE(R.covering, R.vertex_distance_lower);
+    EXPECT_NEAR(R.vertex_distance_lower, plain.vertex_distance_lower, 1e-12);
+    if (expected == &truth) EXPECT_EQ(R.rounds_used, 1);
+    if (expected == &truth) EXPECT_LT(R.min_radius, plain.min_radius);
+    if (expected == &tiny) EXPECT_GT(R.rounds_used, 1);  // (the regrowing path is exercised)
+    std::printf("[ first radii ] expected complex %s: %d rounds, %ld boxes (none given: %d, %ld)\n",
+                expected == &truth ? "true" : expected == &tiny ? "tiny" : "huge", R.rounds_used, R.boxes,
+                plain.rounds_used, plain.boxes);
+  }
+}
+
 TEST(RestrictedChecks, ScaledOctahedronNeverUnderstatesTheCoveringRadius) {
   TempDir dir("restricted-scaled");
   int certified = 0;
