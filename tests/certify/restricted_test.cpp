@@ -316,9 +316,13 @@ TEST(RestrictedChecks, TheExpectedComplexChangesOnlyTheWork) {
     for (std::size_t i = 0; i < R.simplices.size(); ++i) EXPECT_EQ(R.simplices[i].simplex, plain.simplices[i].simplex);
     EXPECT_GE(R.covering, R.vertex_distance_lower);
     EXPECT_NEAR(R.vertex_distance_lower, plain.vertex_distance_lower, 1e-12);
-    if (expected == &truth) EXPECT_EQ(R.rounds_used, 1);
-    if (expected == &truth) EXPECT_LT(R.min_radius, plain.min_radius);
-    if (expected == &tiny) EXPECT_GT(R.rounds_used, 1);  // (the regrowing path is exercised)
+    if (expected == &truth) {
+      EXPECT_EQ(R.rounds_used, 1);
+      EXPECT_LT(R.min_radius, plain.min_radius);
+    }
+    if (expected == &tiny) {
+      EXPECT_GT(R.rounds_used, 1);  // (the regrowing path is exercised)
+    }
     std::printf("[ first radii ] expected complex %s: %d rounds, %ld boxes (none given: %d, %ld)\n",
                 expected == &truth ? "true" : expected == &tiny ? "tiny" : "huge", R.rounds_used, R.boxes,
                 plain.rounds_used, plain.boxes);
