@@ -47,11 +47,13 @@ namespace {
 // arithmetic (exact/enclosed_polynomial.hpp).
 EnclosedPolynomial substitute_affine(const Polynomial& f, const std::vector<EnclosedPolynomial>& A, int vars) {
   std::vector<EnclosedPolynomial> parts;
-  std::vector<std::vector<EnclosedPolynomial>> powers(A.size());  // powers[v][e - 1] = A_v^e, filled lazily
+  parts.reserve(f.terms().size());
+  std::vector<std::vector<EnclosedPolynomial>> powers(A.size());  // powers[v][e - 2] = A_v^e, filled lazily
   auto power = [&](std::size_t v, std::uint32_t e) -> const EnclosedPolynomial& {
+    if (e == 1) return A[v];
     auto& pw = powers[v];
-    while (pw.size() < e) pw.push_back(pw.empty() ? A[v] : pw.back() * A[v]);
-    return pw[e - 1];
+    while (pw.size() < e - 1) pw.push_back((pw.empty() ? A[v] : pw.back()) * A[v]);
+    return pw[e - 2];
   };
   for (const auto& t : f.terms()) {
     // The product of the powers, then one scaling by the coefficient's enclosure.
@@ -62,7 +64,7 @@ EnclosedPolynomial substitute_affine(const Polynomial& f, const std::vector<Encl
         prod = prod ? *prod * pw : pw;
       }
     const Interval c = enclose(t.coefficient);
-    parts.push_back(prod ? prod->scaled(c) : EnclosedPolynomial::constant(c, vars));
+    parts.push_back(prod ? std::move(*prod).scaled(c) : EnclosedPolynomial::constant(c, vars));
   }
   return EnclosedPolynomial::sum(parts, vars);
 }
@@ -292,7 +294,11 @@ bool guess_slab(const ChartEnclosure::Impl& S, const Box& U, std::span<const dou
 }  // namespace
 
 ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
-                               std::vector<mpq_class> Nn, ChartOptions options) {
+                               std::vector<mpq_class> Nn, ChartOptions options)
+    : ChartEnclosure(F, p, std::move(T), std::move(Nn), options, {}) {}
+
+ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
+                               std::vector<mpq_class> Nn, ChartOptions options, const std::vector<mpq_class>& given_J) {
   const int N = F.ambient_dimension(), k = F.codimension(), m = N - k;
   if (static_cast<int>(p.size()) != N)
     throw std::invalid_argument("chart: base point has " + std::to_string(p.size()) + " coordinates, expected " +
@@ -323,7 +329,9 @@ ChartEnclosure::ChartEnclosure(const ImplicitSystem& F, std::span<const double> 
   // exactly). The interval expansion leaves tiny enclosures of 0 there; dropping them keeps G
   // exact in those terms and its evaluations cheaper (a sparse chart keeps few terms).
   {
-    const std::vector<mpq_class> J = F.jacobian_exact(p);  // k x N
+    std::vector<mpq_class> own;
+    if (given_J.empty()) own = F.jacobian_exact(p);
+    const std::vector<mpq_class>& J = given_J.empty() ? own : given_J;  // k x N
     bool kernel = true;
     for (int i = 0; i < k && kernel; ++i)
       for (int a = 0; a < m && kernel; ++a) {
@@ -375,7 +383,7 @@ ChartEnclosure ChartEnclosure::at(const ImplicitSystem& F, std::span<const doubl
     const mpq_class s = column_scale(Nn, N, k, l);
     for (int v = 0; v < N; ++v) Nn[v * k + l] *= s;
   }
-  return ChartEnclosure(F, p, std::move(T), std::move(Nn), options);
+  return ChartEnclosure(F, p, std::move(T), std::move(Nn), options, J);
 }
 
 int ChartEnclosure::ambient_dimension() const { return impl_->N; }

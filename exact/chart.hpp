@@ -149,6 +149,9 @@ class ChartEnclosure {
   struct Impl;
 
  private:
+  // J: J_F(p) (k x N, row-major, exact) when the caller has it (at()), else empty (computed here).
+  ChartEnclosure(const ImplicitSystem& F, std::span<const double> p, std::vector<mpq_class> T,
+                 std::vector<mpq_class> Nn, ChartOptions options, const std::vector<mpq_class>& J);
   std::shared_ptr<const Impl> impl_;
 };
 

@@ -5,9 +5,11 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "exact/detail/cgal_number_types.hpp"
 #include "exact/number_types.hpp"
+#include "exact/small_buffer.hpp"
 
 namespace delcert::exact {
 
@@ -32,6 +34,8 @@ EnclosedPolynomial EnclosedPolynomial::constant(Interval c, int num_variables) {
 
 EnclosedPolynomial EnclosedPolynomial::affine(Interval constant, std::span<const Interval> linear) {
   EnclosedPolynomial r(static_cast<int>(linear.size()));
+  r.exps_.reserve(static_cast<std::size_t>(r.vars_) * (r.vars_ + 1));
+  r.coef_.reserve(static_cast<std::size_t>(r.vars_) + 1);
   r.exps_.assign(r.vars_, 0u);
   r.coef_.push_back(constant);
   for (int j = 0; j < r.vars_; ++j) {
@@ -43,19 +47,23 @@ EnclosedPolynomial EnclosedPolynomial::affine(Interval constant, std::span<const
 }
 
 void EnclosedPolynomial::normalize() {
-  const std::size_t n = coef_.size();
-  std::vector<std::size_t> order(n);
+  // The terms in lexicographic order of their exponents, ties in their current order (so equal
+  // monomials are summed in the order they came: the same sums as a stable sort), merged into the
+  // front of exps_ and coef_ (the result is never longer). Scratch on the stack for the usual
+  // sizes (a chart's polynomials: a few dozen terms): the charts are built once per point.
+  const std::size_t n = coef_.size(), w = static_cast<std::size_t>(vars_);
+  SmallBuffer<std::size_t, 64> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  auto less = [&](std::size_t a, std::size_t b) {
-    return std::lexicographical_compare(exps_.begin() + a * vars_, exps_.begin() + (a + 1) * vars_,
-                                        exps_.begin() + b * vars_, exps_.begin() + (b + 1) * vars_);
+  auto cmp = [&](std::size_t a, std::size_t b) {
+    for (std::size_t v = 0; v < w; ++v)
+      if (exps_[a * w + v] != exps_[b * w + v]) return exps_[a * w + v] < exps_[b * w + v];
+    return false;
   };
-  auto equal = [&](std::size_t a, std::size_t b) {
-    return std::equal(exps_.begin() + a * vars_, exps_.begin() + (a + 1) * vars_, exps_.begin() + b * vars_);
-  };
-  std::stable_sort(order.begin(), order.end(), less);
-  std::vector<std::uint32_t> exps;
-  std::vector<Interval> coef;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cmp(a, b) || (!cmp(b, a) && a < b); });
+  auto equal = [&](std::size_t a, std::size_t b) { return std::equal(exps_.begin() + a * w, exps_.begin() + (a + 1) * w, exps_.begin() + b * w); };
+  SmallBuffer<std::uint32_t, 512> exps(n * w);
+  SmallBuffer<Interval, 64> coef(n);
+  std::size_t out = 0;
   detail::EnsureUpward guard;
   for (std::size_t i = 0; i < n;) {
     IA c = detail::to_ia(coef_[order[i]]);
@@ -64,13 +72,13 @@ void EnclosedPolynomial::normalize() {
     // A coefficient enclosed by [0, 0] is exactly 0 for every polynomial the result stands for:
     // the term is dropped (the exact zeros of a sparse chart, e.g. T or Nn entries that are 0).
     if (!(c.inf() == 0 && c.sup() == 0)) {
-      exps.insert(exps.end(), exps_.begin() + order[i] * vars_, exps_.begin() + (order[i] + 1) * vars_);
-      coef.push_back(detail::from_ia(c));
+      std::copy(exps_.begin() + order[i] * w, exps_.begin() + (order[i] + 1) * w, exps.begin() + out * w);
+      coef[out++] = detail::from_ia(c);
     }
     i = j;
   }
-  exps_ = std::move(exps);
-  coef_ = std::move(coef);
+  exps_.assign(exps.begin(), exps.begin() + out * w);
+  coef_.assign(coef.begin(), coef.begin() + out);
 }
 
 EnclosedPolynomial EnclosedPolynomial::operator+(const EnclosedPolynomial& o) const {
@@ -81,6 +89,10 @@ EnclosedPolynomial EnclosedPolynomial::operator+(const EnclosedPolynomial& o) co
 
 EnclosedPolynomial EnclosedPolynomial::sum(std::span<const EnclosedPolynomial> terms, int num_variables) {
   EnclosedPolynomial r(num_variables);
+  std::size_t total = 0;
+  for (const auto& t : terms) total += t.size();
+  r.exps_.reserve(total * static_cast<std::size_t>(num_variables));
+  r.coef_.reserve(total);
   for (const auto& t : terms) {
     if (t.vars_ != num_variables) throw std::invalid_argument("enclosed polynomial: sum of polynomials in different variables");
     r.exps_.insert(r.exps_.end(), t.exps_.begin(), t.exps_.end());
@@ -111,11 +123,12 @@ EnclosedPolynomial EnclosedPolynomial::operator*(const EnclosedPolynomial& o) co
   return r;
 }
 
-EnclosedPolynomial EnclosedPolynomial::scaled(const Interval& c) const {
-  EnclosedPolynomial r = *this;
+EnclosedPolynomial EnclosedPolynomial::scaled(const Interval& c) const& { return EnclosedPolynomial(*this).scaled(c); }
+
+EnclosedPolynomial EnclosedPolynomial::scaled(const Interval& c) && {
   detail::EnsureUpward guard;
-  for (auto& x : r.coef_) x = detail::from_ia(detail::to_ia(x) * detail::to_ia(c));
-  return r;
+  for (auto& x : coef_) x = detail::from_ia(detail::to_ia(x) * detail::to_ia(c));
+  return std::move(*this);
 }
 
 EnclosedPolynomial EnclosedPolynomial::derivative(int var) const {
@@ -138,6 +151,7 @@ EnclosedPolynomial EnclosedPolynomial::derivative(int var) const {
 
 DoublePolynomial EnclosedPolynomial::midpoints() const {
   std::vector<double> mid;
+  mid.reserve(coef_.size());
   for (const auto& c : coef_) mid.push_back(c.midpoint());
   return DoublePolynomial(vars_, mid, exps_);
 }

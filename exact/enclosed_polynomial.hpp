@@ -49,7 +49,8 @@ class EnclosedPolynomial {
   // The sum of all of them (one normalisation), the zero polynomial in num_variables when empty.
   static EnclosedPolynomial sum(std::span<const EnclosedPolynomial> terms, int num_variables);
   EnclosedPolynomial operator*(const EnclosedPolynomial& o) const;
-  EnclosedPolynomial scaled(const Interval& c) const;
+  EnclosedPolynomial scaled(const Interval& c) const&;
+  EnclosedPolynomial scaled(const Interval& c) &&;  // the same, reusing this one's storage
   EnclosedPolynomial derivative(int var) const;
 
   // The polynomial without the terms whose exponents satisfy `known_zero`: for a caller that

@@ -331,6 +331,35 @@ bool krawczyk_apply(int n, const double* Y, const double* y, const IA* fy, const
   return true;
 }
 
+// Y := A^-1 for a small n x n A (n <= 4, both column-major, as Eigen stores them): Gauss-Jordan
+// elimination with partial pivoting, in ordinary floating point (the caller's nearest rounding).
+// Only a preconditioner: any Y is correct, a good one makes Krawczyk succeed. Faster than
+// Eigen's FullPivLU at these sizes (the restricted Voronoi vertices' 3 x 3 and 4 x 4 systems).
+// False when a pivot is 0 or not finite (A singular in floating point, or overflow).
+bool small_inverse(int n, const double* A, double* Y) {
+  double M[4][8];  // [A | I], row-major
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) M[i][j] = A[i + j * n], M[i][n + j] = i == j ? 1.0 : 0.0;
+  for (int c = 0; c < n; ++c) {
+    int best = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(M[r][c]) > std::abs(M[best][c])) best = r;
+    if (!(M[best][c] != 0 && std::isfinite(M[best][c]))) return false;
+    if (best != c)
+      for (int j = 0; j < 2 * n; ++j) std::swap(M[c][j], M[best][j]);
+    const double inv = 1 / M[c][c];
+    for (int j = 0; j < 2 * n; ++j) M[c][j] *= inv;
+    for (int r = 0; r < n; ++r) {
+      if (r == c || M[r][c] == 0) continue;
+      const double f = M[r][c];
+      for (int j = 0; j < 2 * n; ++j) M[r][j] -= f * M[c][j];
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) Y[i + j * n] = M[i][n + j];
+  return true;
+}
+
 // The operator itself from G(U, y) (fy, n) and J_x(U, X) (jx, n x n row-major), both enclosures
 // with finite bounds, at the point y of X.
 template <int MaxN>
@@ -353,9 +382,13 @@ bool krawczyk_core(int n, const double* y, const IA* fy, const IA* jx, const Box
       if (!std::isfinite(Y(0, 0))) return false;
       return krawczyk_apply(n, Y.data(), y, fy, jx, X, K);
     }
-    Eigen::FullPivLU<Mat> lu(Jmid);
-    if (!lu.isInvertible()) return false;
-    Y = lu.inverse();
+    if (n <= 4) {
+      if (!small_inverse(n, Jmid.data(), Y.data())) return false;
+    } else {
+      Eigen::FullPivLU<Mat> lu(Jmid);
+      if (!lu.isInvertible()) return false;
+      Y = lu.inverse();
+    }
     if (!Y.allFinite()) return false;
   }
   return krawczyk_apply(n, Y.data(), y, fy, jx, X, K);

@@ -632,6 +632,10 @@ DoublePolynomial::DoublePolynomial(const Polynomial& p) : num_vars_(p.num_variab
 DoublePolynomial::DoublePolynomial(int num_vars, std::span<const double> coefficients,
                                    std::span<const std::uint32_t> exponents)
     : num_vars_(num_vars) {
+  coefficients_.reserve(coefficients.size());
+  ends_.reserve(coefficients.size());
+  factors_.reserve(static_cast<std::size_t>(
+      std::count_if(exponents.begin(), exponents.begin() + coefficients.size() * num_vars, [](std::uint32_t e) { return e > 0; })));
   for (std::size_t i = 0; i < coefficients.size(); ++i) {
     coefficients_.push_back(coefficients[i]);
     for (int v = 0; v < num_vars; ++v)
