@@ -133,7 +133,9 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
   }
 
   // Assemble: the simplices (first certified vertex of each), the covering bound, the cross-check.
-  std::map<std::vector<int>, RestrictedSimplex> found, faces;
+  std::vector<std::pair<std::vector<int>, RestrictedSimplex>> found;  // sorted by simplex
+  std::map<std::vector<int>, RestrictedSimplex> faces;
+  std::vector<std::pair<const RestrictedVoronoiVertex*, int>> vertex_refs;  // (vertex, the point whose cell lists it)
   R.min_radius = INFINITY;
   auto distance_lower = [&](const RestrictedVoronoiVertex& v, int p) {
     exact::UpwardRounding up;
@@ -150,14 +152,20 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     if (!cell.complete) R.incomplete_points.push_back(p);
     R.min_radius = std::min(R.min_radius, cell.graph_radius);
     if (cell.covering_bound > R.covering || R.covering_point < 0) R.covering = cell.covering_bound, R.covering_point = p;
-    for (const auto& v : cell.vertices) {
-      if (found.count(v.simplex)) continue;
-      const double lower = distance_lower(v, p);
-      found.emplace(v.simplex, RestrictedSimplex{v.simplex, p, v, lower});
-      R.vertex_distance_lower = std::max(R.vertex_distance_lower, lower);
-    }
+    for (const auto& v : cell.vertices) vertex_refs.emplace_back(&v, p);
     for (const auto& v : cell.face_points)
       if (!faces.count(v.simplex)) faces.emplace(v.simplex, RestrictedSimplex{v.simplex, p, v, distance_lower(v, p)});
+  }
+  // The m-simplices, each from the first cell (by point index) and the first of its vertices there
+  // that found it: a stable sort of the vertices by simplex, in (cell, vertex) order.
+  std::stable_sort(vertex_refs.begin(), vertex_refs.end(), [](auto& a, auto& b) { return a.first->simplex < b.first->simplex; });
+  for (std::size_t i = 0; i < vertex_refs.size(); ++i) {
+    const RestrictedVoronoiVertex& v = *vertex_refs[i].first;
+    const int p = vertex_refs[i].second;
+    if (i > 0 && vertex_refs[i - 1].first->simplex == v.simplex) continue;
+    const double lower = distance_lower(v, p);
+    found.emplace_back(v.simplex, RestrictedSimplex{v.simplex, p, v, lower});
+    R.vertex_distance_lower = std::max(R.vertex_distance_lower, lower);
   }
   auto covered = [](const std::vector<int>& f, const auto& simplices) {  // a proper face of one of them?
     return std::any_of(simplices.begin(), simplices.end(), [&](const auto& e) {

@@ -18,6 +18,7 @@
 #include "exact/max_affine.hpp"
 #include "exact/number_types.hpp"
 #include "exact/small_buffer.hpp"
+#include "exact/small_vector.hpp"
 
 namespace delcert::certify {
 
@@ -39,7 +40,7 @@ IA ia(const Interval& i) { return exact::to_interval_number(i); }
 struct Candidate {
   int index = -1;
   IA c;
-  std::vector<IA> a2, b2;  // 2 a (m of them) and 2 b (k of them)
+  exact::SmallVector<IA, 4> a2, b2;  // 2 a (m of them) and 2 b (k of them); inline for m, k <= 4
 };
 
 struct Work {

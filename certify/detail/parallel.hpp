@@ -1,11 +1,14 @@
-// A deterministic parallel loop: indices [0, n) are cut into `threads` contiguous blocks, the first
-// on the calling thread, each other on a std::thread of its own. Results must be written to
-// per-index slots so that the output does not depend on the number of threads. The first exception
-// (by smallest index) is rethrown.
+// A deterministic parallel loop: indices [0, n) are handed out in increasing order, one at a time,
+// to `threads` workers (the caller and threads - 1 std::threads): uneven work keeps all busy.
+// Results go to per-index slots, per-worker state only counts (order-independent), so the output
+// depends on neither the thread count nor the schedule. The first exception by index is rethrown:
+// every index below a failing one was taken before it and runs to its end.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -15,26 +18,26 @@ namespace delcert::certify::detail {
 template <class F>
 void parallel_for(std::size_t n, int threads, F&& f) {
   threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<std::size_t>(n, 1))));
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::size_t> error_index(threads, n);
+  std::atomic<std::size_t> next{0}, failed_at{n};  // failed_at: the smallest failing index (n: none)
+  std::exception_ptr error;
+  std::mutex error_mutex;
   auto work = [&](int t) {
-    std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
-    for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < n;) {
+      if (i > failed_at.load(std::memory_order_relaxed)) return;
       try {
         f(i, t);
       } catch (...) {
-        errors[t] = std::current_exception();
-        error_index[t] = i;
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (i < failed_at.load(std::memory_order_relaxed)) error = std::current_exception(), failed_at = i;
         return;
       }
     }
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);  // as with one thread: its allocations reuse what the readers freed (1M points: peak 130 MiB lower)
+  work(0);
   for (auto& th : pool) th.join();
-  for (int t = 0; t < threads; ++t)  // blocks are in index order: the first error is the smallest index
-    if (errors[t]) std::rethrow_exception(errors[t]);
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace delcert::certify::detail

@@ -168,8 +168,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // lines, Krawczyk on the separable rows through exact::EnclosedFunction) took the refined T^3's
   // Del_RM from 62 to 24 CPU-s and coarse T^3 samples from minutes to a second: 8951. First radii
   // from the complex's largest circumradius (restricted.cpp, ~20 lines; sphere-2's Del_RM -25%,
-  // the refined T^3's -27%): 8980, so 8990.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 8990) << "certify/ should stay small enough to read whole";
+  // the refined T^3's -27%): 8980. Work handed out one index at a time by detail/parallel.hpp
+  // (uneven cells kept both threads busy) and the m-simplices assembled by one sort instead of a
+  // map (restricted.cpp), ~12 net: 8992, so 9000.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 9000) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
