@@ -55,9 +55,8 @@ void EnclosedPolynomial::normalize() {
   SmallBuffer<std::size_t, 64> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   auto cmp = [&](std::size_t a, std::size_t b) {
-    for (std::size_t v = 0; v < w; ++v)
-      if (exps_[a * w + v] != exps_[b * w + v]) return exps_[a * w + v] < exps_[b * w + v];
-    return false;
+    return std::lexicographical_compare(exps_.begin() + a * w, exps_.begin() + (a + 1) * w, exps_.begin() + b * w,
+                                        exps_.begin() + (b + 1) * w);
   };
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cmp(a, b) || (!cmp(b, a) && a < b); });
   auto equal = [&](std::size_t a, std::size_t b) { return std::equal(exps_.begin() + a * w, exps_.begin() + (a + 1) * w, exps_.begin() + b * w); };

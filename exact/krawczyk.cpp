@@ -372,17 +372,7 @@ bool krawczyk_core(int n, const double* y, const IA* fy, const IA* jx, const Box
     NearestRounding nearest;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) Jmid(i, j) = 0.5 * (jx[i * n + j].inf() + jx[i * n + j].sup());
-    if (n == 1) {
-      // The 1 x 1 case (a hypersurface's chart) without the LU: the same double as Eigen's
-      // FullPivLU inverse (invertible iff 0 < |J| < inf; it solves against the identity by
-      // multiplying with 1 / J), so the same answers, faster.
-      const double j = Jmid(0, 0);
-      if (!(j != 0 && std::isfinite(j))) return false;
-      Y(0, 0) = 1 / j;
-      if (!std::isfinite(Y(0, 0))) return false;
-      return krawczyk_apply(n, Y.data(), y, fy, jx, X, K);
-    }
-    if (n <= 4) {
+    if (n <= 4) {  // (n = 1, a hypersurface's chart: Y = 1 * (1 / J), the double Eigen's FullPivLU gave)
       if (!small_inverse(n, Jmid.data(), Y.data())) return false;
     } else {
       Eigen::FullPivLU<Mat> lu(Jmid);
