@@ -83,7 +83,10 @@ std::string metric_mismatch(const io::ManifoldSpec& spec, const io::ShapeSpec& g
     return "";
   }
   std::vector<exact::Polynomial> expected;
-  if (g.kind == io::ShapeSpec::Kind::sphere) {
+  if (g.kind == io::ShapeSpec::Kind::product) {
+    for (const auto& f : g.factors)
+      expected.push_back(sphere_polynomial(f.coordinates, std::vector<mpq_class>(f.coordinates.size(), 0), f.radius, N));
+  } else if (g.kind == io::ShapeSpec::Kind::sphere) {
     std::vector<int> vars(N);
     for (int v = 0; v < N; ++v) vars[v] = v;
     expected.push_back(sphere_polynomial(vars, g.center, g.radius, N));
@@ -95,6 +98,11 @@ std::string metric_mismatch(const io::ManifoldSpec& spec, const io::ShapeSpec& g
   if (!why.empty()) return why;
   if (spec.selector) return "the spec has a selector: M may be only a component of the declared shape";
   return "";
+}
+
+// Every factor a round sphere (a circle included).
+bool spheres_only(const std::vector<io::ShapeFactor>& fs) {
+  return std::all_of(fs.begin(), fs.end(), [](const io::ShapeFactor& f) { return f.kind == io::ShapeFactor::Kind::sphere; });
 }
 
 }  // namespace
@@ -132,11 +140,19 @@ VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
     } else if (ordered && circles) {
       g.kind = io::ShapeSpec::Kind::product_of_circles;
       for (const auto& f : g.factors) g.radii.push_back(f.radius);
+    } else if (spheres_only(g.factors) && m <= 3) {  // GEODESIC cells (certify/intrinsic_product.cpp)
+      V.metric = "product";
+      const std::string mismatch = metric_mismatch(spec, g);
+      if (!mismatch.empty()) {
+        V.reason = "the declared metric is not used: " + mismatch;
+        return V;
+      }
+      V.shape = std::move(g);
+      return V;
     } else {
       V.metric = "product";
-      V.reason = "Del_M for the product " + factors +
-                 (circles ? " (circles not on the coordinate pairs (x1, x2), (x3, x4), ... in order)" : "") +
-                 " is not built in this version (docs/design.md §12)";
+      V.reason = "Del_M for the product " + factors + " is not built in this version (" +
+                 (spheres_only(g.factors) ? "m > 3" : "an SO(3) factor") + "; docs/design.md §12)";
       return V;
     }
   }
@@ -178,6 +194,7 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
     return D;
   }
   const io::ShapeSpec& g = *V.shape;
+  if (g.kind == io::ShapeSpec::Kind::product) return detail::intrinsic_delaunay_product(spec, g, points, grid, candidates, threads);
   return g.kind == io::ShapeSpec::Kind::sphere ? detail::intrinsic_delaunay_sphere(g, points, grid, candidates, threads)
          : g.kind == io::ShapeSpec::Kind::so3  ? detail::intrinsic_delaunay_so3(points, grid, candidates, threads)
                                                : detail::intrinsic_delaunay_flat_torus(g, points, grid, candidates, threads);

@@ -4,6 +4,8 @@
 //   * sphere (M a round hypersphere, m = N - 1): certify/intrinsic_sphere.cpp;
 //   * product_of_circles (a flat torus, N = 2m): certify/intrinsic_torus.cpp;
 //   * so3 (SO(3) in R^9, the Frobenius metric): certify/intrinsic_so3.cpp;
+//   * product (any other product of round spheres, m <= 3, e.g. S^2 x S^1): geodesic Voronoi
+//     cells, certify/intrinsic_product.cpp;
 //   * anything else: not computed, with the reason (no closed-form geodesic distance, or a metric
 //     this version does not handle yet).
 //
@@ -11,7 +13,8 @@
 // M. Convention (stated in the certificate): d_M(x, p) := d_M(x, pi(p)), pi the nearest-point
 // projection onto M in closed form for the supported metrics (sphere: the radial projection
 // from the centre; product of circles: the radial projection within each coordinate plane;
-// SO(3): the nearest rotation, certified as an eigenvector).
+// SO(3): the nearest rotation, certified as an eigenvector; product: the radial projection
+// within each factor's block).
 // So Del_M(P) := Del_M(pi(P)). The projections are irrational; every predicate on them is
 // evaluated in certified arithmetic (exact rationals where possible, MPFI enclosures otherwise)
 // and a sign that the enclosure cannot decide leaves the simplex UNDECIDED: ties are "not
@@ -65,7 +68,8 @@ struct IntrinsicDelaunay {
 };
 
 // The spec's declared metric, normalised (a product of one sphere, of one SO(3), or of circles on
-// (x1, x2), (x3, x4), ... in order, becomes that shape) and used only when the spec's equations
+// (x1, x2), (x3, x4), ... in order, becomes that shape; any other product of spheres with m <= 3
+// stays a product) and used only when the spec's equations
 // are exactly the shape's (up to nonzero rational factors and order; for SO(3) the selector a
 // positive multiple of det): then M IS that shape. `shape` is set only then (a round sphere with
 // N = m + 1, circles with N = 2m, SO(3)); otherwise `metric` names what was declared ("" for

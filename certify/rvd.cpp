@@ -728,6 +728,7 @@ RestrictedCell::RestrictedCell(const exact::ImplicitSystem& system, const io::Po
                                const detail::PointGrid& grid, int p, const RestrictedCellOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (options.shape) impl_->param = detail::ParamCell::make(*options.shape, points, grid, p, options);
+  if (!impl_->param && options.geodesic) throw std::logic_error("restricted cell: a geodesic cell needs its product shape");
   if (!impl_->param) impl_->cell.emplace(system, points, grid, p, options);
 }
 RestrictedCell::~RestrictedCell() = default;

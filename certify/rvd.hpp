@@ -101,6 +101,12 @@ struct RestrictedCellOptions {
   // or SO(3) is then analysed in a RATIONAL CHART (certify/detail/param_cell.hpp) wherever one
   // covers M ∩ B(p, r); nothing is assumed (reach, selector unused there). nullptr: implicit charts.
   const io::ShapeSpec* shape = nullptr;
+  // GEODESIC (Del_M, certify/intrinsic_product.cpp): `shape` a product of round spheres, and the
+  // cell is p's Voronoi cell for the geodesic distance d_M(x, pi(q)) (param_cell.cpp, GEODESIC),
+  // analysed in the geodesic ball B_M(pi(p), r); never the implicit engine. projection_slack: an
+  // upper bound of |q - pi(q)| over all points.
+  bool geodesic = false;
+  double projection_slack = 0;
 };
 
 struct RestrictedVoronoiVertex {

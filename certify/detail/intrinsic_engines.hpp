@@ -23,6 +23,12 @@ IntrinsicDelaunay intrinsic_delaunay_flat_torus(const io::ShapeSpec& metric, con
                                                 const PointGrid& grid, const std::vector<std::vector<int>>& candidates,
                                                 int threads);
 
+// M a product of round spheres (factors on disjoint coordinate blocks, centred at 0, m <= 3): the
+// geodesic Voronoi cells (certify/intrinsic_product.cpp).
+IntrinsicDelaunay intrinsic_delaunay_product(const io::ManifoldSpec& spec, const io::ShapeSpec& metric,
+                                             const io::PointSet& points, const PointGrid& grid,
+                                             const std::vector<std::vector<int>>& candidates, int threads);
+
 // M = SO(3) in R^9 (x1..x9 row-major), the Frobenius metric (certify/intrinsic_so3.cpp).
 // Davenport's symmetric 4 x 4 matrix B(p), linear in p (3 x 3, row-major): <R(x), p> = x^T B(p) x
 // for every quaternion x, R(x) the rotation matrix of x times |x|^2 (quadratic in x). So

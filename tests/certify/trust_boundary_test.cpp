@@ -170,8 +170,14 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // from the complex's largest circumradius (restricted.cpp, ~20 lines; sphere-2's Del_RM -25%,
   // the refined T^3's -27%): 8980. Work handed out one index at a time by detail/parallel.hpp
   // (uneven cells kept both threads busy) and the m-simplices assembled by one sort instead of a
-  // map (restricted.cpp), ~12 net: 8992, so 9000.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 9000) << "certify/ should stay small enough to read whole";
+  // map (restricted.cpp), ~12 net: 8992, so 9000. Issue 12's last metric, Del_M on products of
+  // round spheres (S^2 x S^1, circles in any coordinate order) by geodesic Voronoi cells: the
+  // analysis of Del_RM reused with another sign model (param_cell.cpp GEODESIC: the chart per
+  // factor and its coverage lemma, the squared-angle signs with their mean value form, Krawczyk's
+  // rows and the root tightening, the chartless cell, ~330 lines of which ~60 the proofs) and
+  // certify/intrinsic_product.cpp (the argument, the projection slack, the witnesses re-checked in
+  // MPFI, ~190 lines of which ~35 the proof), ~30 in intrinsic.cpp and rvd.*: 9577, so 9600.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 9600) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
