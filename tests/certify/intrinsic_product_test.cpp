@@ -202,7 +202,9 @@ TEST(IntrinsicProduct, WholeCertificateOnTheExampleSpec) {
   EXPECT_NE(im.summary.find("(all of them)"), std::string::npos) << im.summary;
   const CheckEntry& eq = test::check(c, CheckId::restricted_equals_intrinsic);
   EXPECT_NE(eq.verdict, Verdict::undecided) << eq.summary;
-  if (eq.verdict == Verdict::refuted) EXPECT_FALSE(eq.witnesses.empty());
+  if (eq.verdict == Verdict::refuted) {
+    EXPECT_FALSE(eq.witnesses.empty());
+  }
 }
 
 // A point whose block of a factor is 0 has no projection: Del_M not computed, the point named.
