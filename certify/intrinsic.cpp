@@ -117,6 +117,7 @@ VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
   // A product whose factors are one shape this version handles, written as that shape: one sphere
   // or one SO(3) on x1..xN in order, or circles on (x1, x2), (x3, x4), ... in order.
   io::ShapeSpec g = *spec.metric;
+  bool geodesic = false;
   if (g.kind == io::ShapeSpec::Kind::product) {
     auto in_order = [](const std::vector<io::ShapeFactor>& fs) {
       int next = 0;
@@ -140,15 +141,8 @@ VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
     } else if (ordered && circles) {
       g.kind = io::ShapeSpec::Kind::product_of_circles;
       for (const auto& f : g.factors) g.radii.push_back(f.radius);
-    } else if (spheres_only(g.factors) && m <= 3) {  // GEODESIC cells (certify/intrinsic_product.cpp)
-      V.metric = "product";
-      const std::string mismatch = metric_mismatch(spec, g);
-      if (!mismatch.empty()) {
-        V.reason = "the declared metric is not used: " + mismatch;
-        return V;
-      }
-      V.shape = std::move(g);
-      return V;
+    } else if (spheres_only(g.factors) && m <= 3) {
+      geodesic = true;  // stays a product: GEODESIC cells (certify/intrinsic_product.cpp)
     } else {
       V.metric = "product";
       V.reason = "Del_M for the product " + factors + " is not built in this version (" +
@@ -159,11 +153,12 @@ VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
   const bool sphere = g.kind == io::ShapeSpec::Kind::sphere && N == m + 1;
   const bool torus = g.kind == io::ShapeSpec::Kind::product_of_circles && N == 2 * m && static_cast<int>(g.radii.size()) == m;
   const bool so3 = g.kind == io::ShapeSpec::Kind::so3 && N == 9 && m == 3;
-  V.metric = g.kind == io::ShapeSpec::Kind::so3 ? "so3"
-             : g.kind == io::ShapeSpec::Kind::sphere ? "sphere"
+  V.metric = geodesic                                          ? "product"
+             : g.kind == io::ShapeSpec::Kind::so3                 ? "so3"
+             : g.kind == io::ShapeSpec::Kind::sphere              ? "sphere"
              : g.kind == io::ShapeSpec::Kind::product_of_circles ? "product_of_circles"
                                                                  : "torus_of_revolution";
-  if (sphere || torus || so3) {
+  if (sphere || torus || so3 || geodesic) {
     const std::string mismatch = metric_mismatch(spec, g);
     if (!mismatch.empty()) {
       V.reason = "the declared metric is not used: " + mismatch;

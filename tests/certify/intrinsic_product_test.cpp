@@ -92,6 +92,17 @@ void expect_closed_pseudomanifold(const Simplices& S, std::size_t n, int m, int 
   EXPECT_EQ(e, chi);
 }
 
+// Del_M of P by the geodesic cells, expected complete; its m-simplices.
+Simplices complete_product(const io::ManifoldSpec& spec, const io::PointSet& P, IntrinsicDelaunay* out = nullptr) {
+  IntrinsicDelaunay D = test::del_m(spec, P, {});
+  EXPECT_TRUE(D.computed) << D.reason;
+  EXPECT_EQ(D.metric, "product");
+  EXPECT_TRUE(D.complete) << D.reason;
+  const Simplices S = test::simplices(D);
+  if (out) *out = std::move(D);
+  return S;
+}
+
 // A well-spread S^2 x S^1 sample: Del_M complete, a closed pseudomanifold with chi = 0 (a closed
 // 3-manifold), every witness re-checked (the vertex equidistant from its simplex, every other point
 // farther by the margin), and mutants (a vertex replaced by a neighbour) never certified, each
@@ -101,11 +112,9 @@ TEST(IntrinsicProduct, SphereTimesCircleCompleteAndWitnessed) {
   const io::PointSet P = s2xs1_sample(2, 200, 0.55, 3);
   ASSERT_GE(P.size(), 100u);
   const io::ManifoldSpec spec = s2xs1("2");
-  const IntrinsicDelaunay D = test::del_m(spec, P, {});
-  ASSERT_TRUE(D.computed) << D.reason;
-  EXPECT_EQ(D.metric, "product");
-  ASSERT_TRUE(D.complete) << D.reason;
-  const Simplices S = test::simplices(D);
+  IntrinsicDelaunay D;
+  const Simplices S = complete_product(spec, P, &D);
+  ASSERT_TRUE(D.complete);
   expect_closed_pseudomanifold(S, P.size(), 3, 0);
   for (const auto& s : D.simplices) {
     std::vector<long double> x;
@@ -149,11 +158,7 @@ TEST(IntrinsicProduct, SphereAgreesWithTheHullEngine) {
     "bounding_box": [["-2", "2"], ["-2", "2"], ["-2", "2"]],
     "metric": {"type": "product", "factors": [{"type": "sphere", "coordinates": [2, 3, 1], "radius": "1"}]}})",
                                                   "s2.json");
-  const IntrinsicDelaunay G = test::del_m(product, P, {});
-  ASSERT_TRUE(G.computed) << G.reason;
-  EXPECT_EQ(G.metric, "product");
-  ASSERT_TRUE(G.complete) << G.reason;
-  const Simplices S = test::simplices(G);
+  const Simplices S = complete_product(product, P);
   expect_closed_pseudomanifold(S, P.size(), 2, 2);
   const IntrinsicDelaunay H = test::del_m(io::read_spec("builtin:sphere-2"), P, {S.begin(), S.end()});
   EXPECT_EQ(H.metric, "sphere");
