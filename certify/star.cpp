@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "certify/detail/far_filter.hpp"
 #include "certify/detail/grid.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/linear_algebra.hpp"
@@ -59,8 +60,8 @@ constexpr std::size_t kMaxWrapCells = 20000;
 constexpr int kRayAttempts = 6;
 constexpr double kRayWeightStep = 0.37;
 // Check 7 (Definition 3.1): the points of W = B(p, kSecureNeighbourhoodEps * eps) are tested,
-// at most kMaxSecureNeighbourhood of them (bounded work per point: the cost is one projection per
-// point of W and a sort; the whole check takes 1.4 s of CPU on the 13 466-point refined T^3).
+// at most kMaxSecureNeighbourhood of them (bounded work per point: a grid query, a floating-point
+// bound per point of W (detail/far_filter.hpp) and an interval projection of the few it keeps).
 constexpr double kSecureNeighbourhoodEps = 5;
 constexpr int kMaxSecureNeighbourhood = 50000;
 
@@ -106,21 +107,18 @@ std::vector<IA> gram_enclosure(const exact::TangentSpace& T, int m) {
   return g;
 }
 
-// T may be null (the exact tangent space is then built only if the chart is needed).
-// tangent_only: only the enclosures of b(x) (check 7); s(x) is left 0 and drows empty.
-Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
-                 int p, double radius, bool tangent_only = false) {
+// The Local of the points `glob` (glob[0] = p, the rest increasing). T may be null (the exact
+// tangent space is then built only if the chart is needed). tangent_only: only the enclosures of
+// b(x) (check 7); s(x) is left 0 and drows empty.
+Local make_local_of(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
+                    std::vector<int> glob, double radius, bool tangent_only) {
   const io::PointSet& P = *S.points;
-  std::vector<int> cand = S.grid->ball(P.point(p), radius);
-  std::vector<int> glob{p};
-  for (int g : cand)
-    if (g != p) glob.push_back(g);
   Local L{S.m, P.dimension, std::move(glob), &P, T, S.system, std::nullopt, std::nullopt, {}, {}, {}, radius, false};
   L.all = L.global.size() == P.size();
   const int m = S.m, N = P.dimension;
   L.rows.assign(L.global.size() * (m + 1), IA(0));
   if (!tangent_only) L.drows.assign(L.global.size() * (m + 1), 0);
-  const auto pp = P.point(p);
+  const auto pp = P.point(L.global[0]);
   for (std::size_t l = 1; l < L.global.size(); ++l) {
     auto x = P.point(L.global[l]);
     IA* r = L.rows.data() + l * (m + 1);
@@ -134,6 +132,15 @@ Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std:
   }
   L.gram = gram;
   return L;
+}
+
+// The Local of every point within `radius` of p (and possibly more: the grid's superset).
+Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
+                 int p, double radius) {
+  std::vector<int> glob{p};
+  for (int g : S.grid->ball(S.points->point(p), radius))
+    if (g != p) glob.push_back(g);
+  return make_local_of(S, T, U, gram, std::move(glob), radius, false);
 }
 
 // Enclosure of a cell's centre (y = 2z with c = p + U z) and R^2 = z^T G z from the interval rows:
@@ -515,8 +522,9 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   exact::Interval margin{INFINITY, INFINITY};
   for (int q = 1; q < L.size(); ++q) {
     if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
-    int s = tc.power_sign(q, ctx);
     exact::Interval pw = box.ok ? to_interval(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
+    // The box (or exact) enclosure contains the exact power: a positive lower bound is its sign.
+    int s = pw.lo > 0 ? 1 : tc.power_sign(q, ctx);
     // The printed margin must never contradict an exact sign (the consistency guard in
     // certificate.hpp checks it): where the box enclosure is too loose to show what the exact
     // sign proved, print the enclosure of the exact value instead. enclose() is monotone, so
@@ -868,18 +876,45 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
       for (int k = 0; k < N; ++k) d2 += (P.point(v)[k] - P.point(p)[k]) * (P.point(v)[k] - P.point(p)[k]);
       r = std::max(r, std::sqrt(d2) * kNeededRadiusMargin);
     }
-  Local L = make_local(S, T ? &*T : nullptr, U, Gram, p, r, /*tangent_only=*/true);
-  if (L.size() > kMaxSecureNeighbourhood) {  // bounded work per point
-    out.undecided = static_cast<long>(star.size());
-    return out;
-  }
-  std::vector<mpq_class> Gq, Giq;  // exact G = U^T U and its inverse, only when needed
-  std::vector<IA> G(L.gram), Gi(m * m);
-  {  // enclosure of G^-1 by the adjugate: (G^-1)_ak = (-1)^(a+k) det(G without row k, column a) / det G
+  // Enclosure of G^-1 by the adjugate: (G^-1)_ak = (-1)^(a+k) det(G without row k, column a) / det G.
+  std::vector<IA> G(Gram), Gi(m * m);
+  {
     const IA d = determinant(G.data(), m);
     exact::adjugate(G.data(), m, Gi.data());
     for (IA& x : Gi) x = x / d;  // G is positive definite: d > 0
   }
+  // The points that can matter for delta-protection are those projected within 2r + delta of p: a
+  // point projected farther is protected for every cell (r < eps, so 2 eps + delta bounds every
+  // cell's reach).
+  const double reach_all = (exact::square(IA(2) * exact::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
+                                         IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)))
+                               .sup();
+  // W: every grid point of the ball. Its points that FarFilter proves projected beyond reach_all
+  // are left out of L (they are protected for every cell, so testing them could only confirm it);
+  // the star's vertices are always in. The rest are projected in interval arithmetic as before.
+  std::vector<int> vertices;
+  for (const auto& s : star)
+    for (int v : s)
+      if (v != p) vertices.push_back(v);
+  std::sort(vertices.begin(), vertices.end());
+  std::vector<double> ulo(U.size()), uhi(U.size()), glo(Gi.size()), ghi(Gi.size());
+  for (std::size_t i = 0; i < U.size(); ++i) ulo[i] = U[i].inf(), uhi[i] = U[i].sup();
+  for (std::size_t i = 0; i < Gi.size(); ++i) glo[i] = Gi[i].inf(), ghi[i] = Gi[i].sup();
+  const detail::FarFilter far(P.point(p), ulo, uhi, glo, ghi, m, reach_all);
+  std::vector<int> glob{p};
+  std::size_t w_size = 1;  // p and the rest of W
+  S.grid->visit_ball(P.point(p), r, [&](int q, const double* x) {
+    if (q == p) return;
+    ++w_size;
+    if (!far.beyond(std::span<const double>(x, N)) || std::binary_search(vertices.begin(), vertices.end(), q)) glob.push_back(q);
+  });
+  if (w_size > static_cast<std::size_t>(kMaxSecureNeighbourhood)) {  // bounded work per point
+    out.undecided = static_cast<long>(star.size());
+    return out;
+  }
+  std::sort(glob.begin() + 1, glob.end());
+  Local L = make_local_of(S, T ? &*T : nullptr, U, Gram, std::move(glob), r, /*tangent_only=*/true);
+  std::vector<mpq_class> Gq, Giq;  // exact G = U^T U and its inverse, only when needed
   std::vector<IA> b(L.size() * m, IA(0));  // b(x) = U^T (x - p) per local point, row-major
   std::vector<IA> t(L.size(), IA(0));
   for (int l = 1; l < L.size(); ++l) {
@@ -887,16 +922,12 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
     for (int a = 0; a < m; ++a)
       for (int k = 0; k < m; ++k) t[l] += b[l * m + a] * Gi[a * m + k] * b[l * m + k];
   }
-  // The local points that can matter for delta-protection, by increasing lower bound of their
-  // projected squared distance to p: a point projected farther than 2r + delta from p is
-  // protected for every cell (r < eps, so 2 eps + delta bounds every cell's reach).
-  const double reach_all = (exact::square(IA(2) * exact::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
-                                         IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)))
-                               .sup();
+  // The local points projected possibly within reach_all, by increasing lower bound of their
+  // projected squared distance to p (ties by index).
   std::vector<int> by_t;
   for (int l = 1; l < L.size(); ++l)
     if (!(t[l].inf() > reach_all)) by_t.push_back(l);
-  std::sort(by_t.begin(), by_t.end(), [&](int a, int b2) { return t[a].inf() < t[b2].inf(); });
+  std::sort(by_t.begin(), by_t.end(), [&](int a, int b2) { return t[a].inf() < t[b2].inf() || (t[a].inf() == t[b2].inf() && a < b2); });
   by_t.push_back(-1);  // end marker
   const IA eps2 = to_interval_number(sp.eps2_enclosure), delta = to_interval_number(sp.delta_enclosure),
            ups2 = to_interval_number(sp.upsilon0_2_enclosure), short2 = to_interval_number(sp.shortest2_enclosure);

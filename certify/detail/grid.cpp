@@ -163,6 +163,8 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), 0);
   std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) { return keys[a] < keys[b]; });
+  ordered_.resize(n * N);
+  for (std::size_t k = 0; k < n; ++k) std::copy_n(points.point(order_[k]).data(), N, ordered_.begin() + k * N);
   for (std::size_t i = 0; i < n;) {
     std::size_t j = i;
     while (j < n && keys[order_[j]] == keys[order_[i]]) ++j;
@@ -184,24 +186,33 @@ std::int64_t PointGrid::key(const std::int64_t* idx) const {
 }
 
 std::vector<int> PointGrid::candidates(std::span<const double> c, double r) const {
-  std::vector<int> out = gather(c, r);
+  std::vector<Run> runs;
+  gather(c, r, runs);
+  std::vector<int> out;
+  for (const auto& [b, e] : runs) out.insert(out.end(), order_.begin() + b, order_.begin() + e);
   std::sort(out.begin(), out.end());
   return out;
 }
 
-std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
-  std::vector<int> out;
+void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& out) const {
+  out.clear();
   const int A = static_cast<int>(axes_.size());
-  if (A == 0 || order_.empty()) return order_;  // no axis (dimension 0): every point
-  out.reserve(64);
+  const Run all{0, static_cast<int>(order_.size())};
+  if (A == 0 || order_.empty()) {  // no axis (dimension 0): every point
+    out.push_back(all);
+    return;
+  }
   std::int64_t lo[kMaxAxes] = {0, 0, 0, 0}, hi[kMaxAxes] = {0, 0, 0, 0};
   double cells = 1;
   for (int t = 0; t < A; ++t) {
     const double x = c[axes_[t]];
     // Proof step 4: L <= c - r and U >= c + r in every rounding mode; a, b as in step 1.
     const double a = scaled_floor(std::nextafter(x - r, -INFINITY)), b = scaled_floor(std::nextafter(x + r, INFINITY));
-    if (std::isnan(a) || std::isnan(b)) return order_;  // NaN centre or radius: every point
-    if (b < k0_[t] || a > k1_[t]) return out;             // the box misses every point (exact test)
+    if (std::isnan(a) || std::isnan(b)) {  // NaN centre or radius: every point
+      out.assign(1, all);
+      return;
+    }
+    if (b < k0_[t] || a > k1_[t]) return;  // the box misses every point (exact test)
     lo[t] = static_cast<std::int64_t>(std::max(a, k0_[t]) - k0_[t]);  // = index(t, L), step 3
     hi[t] = static_cast<std::int64_t>(std::min(b, k1_[t]) - k0_[t]);  // = index(t, U)
     cells *= double(hi[t] - lo[t] + 1);
@@ -212,9 +223,9 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
       for (int t = A - 1; t >= 0; --t) idx[t] = rest % dims_[t], rest /= dims_[t];
       bool inside = true;
       for (int t = 0; t < A; ++t) inside = inside && idx[t] >= lo[t] && idx[t] <= hi[t];
-      if (inside) out.insert(out.end(), order_.begin() + range.first, order_.begin() + range.second);
+      if (inside) out.push_back(range);
     }
-    return out;
+    return;
   }
   // Every cell of the index box, the last axis innermost (odometer over the other axes).
   std::int64_t idx[kMaxAxes];
@@ -226,11 +237,11 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
       std::copy(idx, idx + A, a);
       std::copy(idx, idx + A, b);
       a[A - 1] = lo[A - 1], b[A - 1] = hi[A - 1];
-      out.insert(out.end(), order_.begin() + dense_[key(a)], order_.begin() + dense_[key(b) + 1]);
+      if (dense_[key(a)] < dense_[key(b) + 1]) out.push_back({dense_[key(a)], dense_[key(b) + 1]});
     } else {
       for (idx[A - 1] = lo[A - 1]; idx[A - 1] <= hi[A - 1]; ++idx[A - 1]) {
         auto it = cells_.find(key(idx));
-        if (it != cells_.end()) out.insert(out.end(), order_.begin() + it->second.first, order_.begin() + it->second.second);
+        if (it != cells_.end()) out.push_back(it->second);
       }
     }
     int t = A - 2;
@@ -238,10 +249,9 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
     if (t < 0) break;
     ++idx[t];
   }
-  return out;
 }
 
-// The filter keeps every point of B(c, r), in any rounding mode: if |x - c| <= r then r is finite
+// The filter of visit_ball (grid.hpp) keeps every point of B(c, r), in any rounding mode: if |x - c| <= r then r is finite
 // or +inf. If r * r * (1 + 2^-40) overflows to +inf (or is NaN-free +inf) every candidate is kept.
 // Otherwise r < 2^512 and every |x_j - c_j| <= r, so no operation below overflows; each of the N
 // differences, squares and sums is correctly rounded, so the computed d2 is at most
@@ -249,21 +259,8 @@ std::vector<int> PointGrid::gather(std::span<const double> c, double r) const {
 // range), and the computed r2 is at least r^2 (1 + 2^-40)(1 - 2^-52)^2. For N <= 64 and
 // r2 > 1e-280 the first is below the second. Below 1e-280 every candidate is kept.
 std::vector<int> PointGrid::ball(std::span<const double> c, double r) const {
-  std::vector<int> out = gather(c, r);
-  const int N = points_.dimension;
-  const double r2 = r * r * (1 + 0x1p-40);
-  if (!(r2 > 1e-280) || !(r2 <= DBL_MAX)) {  // too small to filter safely, infinite, or NaN: keep all
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-  std::size_t k = 0;
-  for (int i : out) {
-    auto x = points_.point(i);
-    double d2 = 0;
-    for (int j = 0; j < N; ++j) d2 += (x[j] - c[j]) * (x[j] - c[j]);
-    if (d2 <= r2) out[k++] = i;
-  }
-  out.resize(k);
+  std::vector<int> out;
+  visit_ball(c, r, [&](int i, const double*) { out.push_back(i); });
   std::sort(out.begin(), out.end());
   return out;
 }

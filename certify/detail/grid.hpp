@@ -10,9 +10,11 @@
 // exact::UpwardRounding): cell indices are computed EXACTLY, see the proof in grid.cpp.
 #pragma once
 
+#include <cfloat>
 #include <cstdint>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "io/points.hpp"
@@ -36,6 +38,11 @@ class PointGrid {
   std::vector<int> candidates(std::span<const double> c, double r) const;
   // The candidates within floating-point distance r (1 + 2^-40) of c: still every point of B(c, r).
   std::vector<int> ball(std::span<const double> c, double r) const;
+  // Calls f(index, coordinates) for each point of ball(c, r), in no particular order
+  // (deterministic: it depends only on the grid and the query). The coordinates are the grid's
+  // copy, read in sequence (N doubles, equal to points.point(index)).
+  template <class F>
+  void visit_ball(std::span<const double> c, double r, F&& f) const;
 
   // The cell edge 2^cell_exponent() (a power of two, possibly subnormal).
   int cell_exponent() const { return e_; }
@@ -51,7 +58,9 @@ class PointGrid {
   std::int64_t index(int t, double x) const;
   double scaled_floor(double x) const;  // floor(x / 2^e_) exactly (when it does not overflow)
   std::int64_t key(const std::int64_t* idx) const;
-  std::vector<int> gather(std::span<const double> c, double r) const;  // candidates, unsorted
+  static double filter_radius2(double r) { return r * r * (1 + 0x1p-40); }  // see grid.cpp
+  using Run = std::pair<int, int>;  // [begin, end) in order_
+  void gather(std::span<const double> c, double r, std::vector<Run>& out) const;  // the candidates' runs
   const io::PointSet& points_;
   std::vector<int> axes_;          // up to kMaxAxes coordinate indices
   std::vector<double> k0_, k1_;    // per axis: floor(lo / 2^e), floor(hi / 2^e) (integers)
@@ -60,8 +69,25 @@ class PointGrid {
   double f1_ = 1, f2_ = 1;         // 2^-e = f1 * f2, each factor a double (f2 != 1 only if e < -1022)
   double diameter_ = 0, spacing_ = 1;
   std::vector<int> order_;  // point indices sorted by cell key
+  std::vector<double> ordered_;  // the points' coordinates in that order (n x N: the filter reads them in sequence)
   std::unordered_map<std::int64_t, std::pair<int, int>> cells_;  // key -> [begin, end) in order_
   std::vector<int> dense_;  // when the grid is small enough: key -> begin in order_ (CSR, #cells + 1)
 };
+
+template <class F>
+void PointGrid::visit_ball(std::span<const double> c, double r, F&& f) const {
+  thread_local std::vector<Run> runs;  // scratch (its capacity is reused)
+  gather(c, r, runs);
+  const int N = points_.dimension;
+  const double r2 = filter_radius2(r);
+  const bool all = !(r2 > 1e-280) || !(r2 <= DBL_MAX);  // too small to filter safely, infinite or NaN: keep all
+  for (const auto& [b, e] : runs)
+    for (int k = b; k < e; ++k) {
+      const double* x = ordered_.data() + static_cast<std::size_t>(k) * N;
+      double d2 = 0;
+      for (int j = 0; !all && j < N; ++j) d2 += (x[j] - c[j]) * (x[j] - c[j]);
+      if (all || d2 <= r2) f(order_[k], x);
+    }
+}
 
 }  // namespace delcert::certify::detail

@@ -1,0 +1,40 @@
+// A floating-point proof that a point projects far from p onto T_p (check 7's prefilter).
+//
+// Check 7 tests delta-protection only against the points of W = B(p, 5 eps) whose projection onto
+// T_p lies within 2 eps + delta of p: at m = 3 about 1 in 15 of W. Projecting every point of W in
+// interval arithmetic was most of check 7's time; this test discards most of W with a few double
+// operations per point and an a-priori error bound (the proof in far_filter.cpp). A discarded point
+// is one whose exact projected squared distance exceeds the threshold, so it would have been found
+// protected for every cell of the star; the points kept are projected exactly as before.
+#pragma once
+
+#include <span>
+#include <vector>
+
+namespace delcert::certify::detail {
+
+class FarFilter {
+ public:
+  // p: N coordinates. The exact tangent basis U (N x m, row-major) lies entrywise in
+  // [u_lo, u_hi]; the inverse G^-1 of its Gram matrix (m x m, row-major) in [gi_lo, gi_hi].
+  // threshold >= 0. Any finite or infinite enclosures are accepted (a NaN or infinite one only
+  // makes beyond() always false).
+  FarFilter(std::span<const double> p, std::span<const double> u_lo, std::span<const double> u_hi,
+            std::span<const double> gi_lo, std::span<const double> gi_hi, int m, double threshold);
+
+  // true proves t(x) = b^T G^-1 b > threshold for the exact b = U^T (x - p) of the exact real
+  // x - p (t is |pi_p(x) - p|^2, the squared distance from p of the orthogonal projection of x onto
+  // the affine tangent space at p). false proves nothing. Valid in every IEEE rounding mode, for
+  // any finite coordinates (N of them).
+  bool beyond(std::span<const double> x) const;
+
+ private:
+  int N_ = 0, m_ = 0;
+  std::span<const double> p_;
+  std::vector<double> u_;  // mid(U), N x m
+  std::vector<double> g_;  // mid(G^-1), m x m
+  double c_ = 0;           // |e_a| <= c_ * sum_i |d~_i| + 2^-1060 (step 3)
+  double c1_ = 0, c2_ = 0, threshold_ = 0;
+};
+
+}  // namespace delcert::certify::detail
