@@ -521,9 +521,9 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
 }
 
 // Check 8: the complex is a closed pseudomanifold with sphere links, and the topology the spec expects.
-CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattice, const io::ExpectedTopology& expect) {
+CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattice, const io::ExpectedTopology& expect, int threads) {
   CheckEntry topo(CheckId::topology);
-  TopologyReport T = analyse_topology(K, m, &lattice);
+  TopologyReport T = analyse_topology(K, m, &lattice, threads);
   if (!T.pure) topo.refute("not pure"), topo.add_witness({{"kind", "not_pure"}, {"simplex", T.impure_example}});
   if (T.boundary_ridges || T.singular_ridges) {
     topo.refute("not a closed pseudomanifold");
@@ -1197,7 +1197,7 @@ Certificate run_certify(const CertifyOptions& o) {
   watch.record(C, "thickness");
 
   phase("check 8 topology");
-  CheckEntry topology = check_topology(K, m, lattice, spec.expected);
+  CheckEntry topology = check_topology(K, m, lattice, spec.expected, threads);
   watch.record(C, "topology");
 
   // Checks 11-13: the certified restricted Voronoi diagram.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "certify/detail/parallel.hpp"
 #include "topology/three_sphere.hpp"
 
 namespace delcert::certify {
@@ -497,7 +498,7 @@ bool link_is_2_sphere(const std::vector<std::array<int, 3>>& tris, LinkScratch& 
 
 }  // namespace
 
-TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* lattice) {
+TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* lattice, int threads) {
   TopologyReport R;
   R.m = m;
   bool too_big = false;
@@ -541,34 +542,34 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
   std::vector<std::vector<long>> incident(K.num_vertices);
   for (std::size_t j = 0; j < K.simplices.size(); ++j)
     for (int v : K.simplices[j]) incident[v].push_back(static_cast<long>(j));
-  LinkScratch scratch;
-  std::vector<std::array<int, 3>> tris;
+  // The m = 3 fast path for every vertex in parallel (its answer depends only on the vertex); the
+  // vertices it does not accept then go, in increasing order, through is_sphere.
+  std::vector<char> settled(K.num_vertices, 0);
+  if (m == 3) {
+    std::vector<LinkScratch> scratch(std::max(1, threads));
+    std::vector<std::vector<std::array<int, 3>>> tris_of(std::max(1, threads));
+    detail::parallel_for(K.num_vertices, threads, [&](std::size_t v, int w) {
+      auto& tris = tris_of[w];
+      tris.clear();
+      for (long j : incident[v]) {
+        const auto& s = K.simplices[j];
+        if (s.size() != 4) return;
+        std::array<int, 3> t{};
+        int n = 0;
+        for (int x : s)
+          if (x != static_cast<int>(v) && n < 3) t[n++] = x;
+        if (n != 3) return;
+        tris.push_back(t);
+      }
+      settled[v] = !incident[v].empty() && link_is_2_sphere(tris, scratch[w]);  // is_sphere would say yes
+    });
+  }
   for (std::size_t v = 0; v < K.num_vertices; ++v) {
     if (incident[v].empty()) {
       ++R.uncovered_vertices;
       continue;
     }
-    if (m == 3) {  // fast path for surface links; anything it does not accept goes to is_sphere
-      tris.clear();
-      bool all_tets = true;
-      for (long j : incident[v]) {
-        const auto& s = K.simplices[j];
-        if (s.size() != 4) {
-          all_tets = false;
-          break;
-        }
-        std::array<int, 3> t{};
-        int n = 0;
-        for (int w : s)
-          if (w != static_cast<int>(v) && n < 3) t[n++] = w;
-        if (n != 3) {
-          all_tets = false;
-          break;
-        }
-        tris.push_back(t);
-      }
-      if (all_tets && link_is_2_sphere(tris, scratch)) continue;  // is_sphere would say yes
-    }
+    if (settled[v]) continue;
     std::vector<std::vector<int>> link;
     for (long j : incident[v]) {
       std::vector<int> t;
@@ -595,8 +596,10 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
       R.euler += (k % 2 ? -1 : 1) * R.f.back();
     }
     const FaceIndex I = face_index(L);  // shared by both fields
-    R.betti_z2 = betti_from_ranks(L, boundary_ranks(L, I, 2));
-    R.betti_z3 = betti_from_ranks(L, boundary_ranks(L, I, 3));
+    std::vector<long> ranks[2];
+    detail::parallel_for(2, threads, [&](std::size_t f, int) { ranks[f] = boundary_ranks(L, I, f ? 3 : 2); });
+    R.betti_z2 = betti_from_ranks(L, ranks[0]);
+    R.betti_z3 = betti_from_ranks(L, ranks[1]);
   }
   return R;
 }

@@ -65,6 +65,8 @@ struct TopologyReport {
 };
 
 // `lattice`: face_lattice(complex.simplices) when the caller has it already (else built here).
-TopologyReport analyse_topology(const io::Complex& complex, int m, const FaceLattice* lattice = nullptr);
+// `threads`: the m = 3 vertex links and the two fields' ranks run in parallel; the report does not
+// depend on it.
+TopologyReport analyse_topology(const io::Complex& complex, int m, const FaceLattice* lattice = nullptr, int threads = 1);
 
 }  // namespace delcert::certify

@@ -133,6 +133,26 @@ TEST(Topology, VertexLinksOfThreeManifolds) {
     if (t[0] == 0) link0.push_back(std::vector<int>(t.begin() + 1, t.end()));
   EXPECT_EQ(is_sphere(link0, 2, &why), Tri::no);
   EXPECT_EQ(R.bad_link_reason, why);
+  // The same report with the links and the fields in parallel; also on three wedges (three bad
+  // links: the first by index is named) and with an uncovered vertex.
+  Simplices more = wedge;
+  for (auto t : boundary4) {
+    for (int& v : t) v = v ? v + 8 : 4;  // shares vertex 4 with the second sphere
+    more.push_back(t);
+  }
+  for (const io::Complex& C : {W, io::Complex{14, more}}) {
+    const TopologyReport A = analyse_topology(C, 3, nullptr, 1), B = analyse_topology(C, 3, nullptr, 3);
+    EXPECT_EQ(A.bad_links, B.bad_links);
+    EXPECT_EQ(A.bad_link_example, B.bad_link_example);
+    EXPECT_EQ(A.bad_link_reason, B.bad_link_reason);
+    EXPECT_EQ(A.uncovered_vertices, B.uncovered_vertices);
+    EXPECT_EQ(A.betti_z2, B.betti_z2);
+    EXPECT_EQ(A.betti_z3, B.betti_z3);
+  }
+  const TopologyReport M = analyse_topology(io::Complex{14, more}, 3, nullptr, 2);
+  EXPECT_EQ(M.bad_links, 2);  // vertices 0 and 4
+  EXPECT_EQ(M.bad_link_example, 0);
+  EXPECT_EQ(M.uncovered_vertices, 1);  // vertex 13
 }
 
 }  // namespace
