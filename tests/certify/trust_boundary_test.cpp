@@ -177,7 +177,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // rows and the root tightening, the chartless cell, ~330 lines of which ~60 the proofs) and
   // certify/intrinsic_product.cpp (the argument, the projection slack, the witnesses re-checked in
   // MPFI, ~190 lines of which ~35 the proof), ~30 in intrinsic.cpp and rvd.*: 9577, so 9600.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 9600) << "certify/ should stay small enough to read whole";
+  // Issue 14 (certification within 3x of construction): check 7's floating-point prefilter with
+  // its error bound (detail/far_filter.*, ~150 lines of which ~50 the proof), the grid's visitor
+  // over a cell-ordered copy of the points (~25), check 8's parallel links and fields (~25): 9788,
+  // so 9800.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 9800) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
