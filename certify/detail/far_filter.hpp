@@ -33,7 +33,7 @@ class FarFilter {
   std::span<const double> p_;
   std::vector<double> u_;  // mid(U), N x m
   std::vector<double> g_;  // mid(G^-1), m x m
-  double c_ = 0;           // |e_a| <= c_ * sum_i |d~_i| + 2^-1060 (step 3)
+  double c_ = 0;           // |e_a| <= c_ * sum_i |d~_i| + 2^-1020 (step 3)
   double c1_ = 0, c2_ = 0, threshold_ = 0;
 };
 

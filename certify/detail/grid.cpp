@@ -251,8 +251,9 @@ void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& ou
   }
 }
 
-// The filter of visit_ball (grid.hpp) keeps every point of B(c, r), in any rounding mode: if |x - c| <= r then r is finite
-// or +inf. If r * r * (1 + 2^-40) overflows to +inf (or is NaN-free +inf) every candidate is kept.
+// The filter of visit_ball (grid.hpp) keeps every point of B(c, r), in any rounding mode: if
+// |x - c| <= r then r is finite or +inf. If r * r * (1 + 2^-40) overflows to +inf (or is NaN-free
+// +inf) every candidate is kept.
 // Otherwise r < 2^512 and every |x_j - c_j| <= r, so no operation below overflows; each of the N
 // differences, squares and sums is correctly rounded, so the computed d2 is at most
 // |x - c|^2 (1 + 2^-52)^(N+2) + (2N) 2^-1074 (the absolute term: rounding in the subnormal
