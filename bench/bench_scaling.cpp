@@ -29,6 +29,11 @@
 // the same tangent planes for both sides), and its stars+assembly speed-up over GUDHI and the peak
 // memory ratio are reported beside the curve.
 //
+// --mpi-ranks K (with delcert-certify built with -DDELCERT_MPI=ON; --mpiexec, default mpirun): for
+// each certify case also `delcert-certify --threads 1` and `MPIEXEC -n K delcert-certify --threads 1`
+// (--no-times both), their wall times, the peak resident size of the largest process (wait4 counts
+// the ranks, mpirun's children) and whether the two certificates are the same bytes.
+//
 // --keep DIR: write the inputs and outputs (points, complexes, certificates) to DIR and keep them.
 //
 // Output: one JSON document on standard output; the table (µs per point, MB, bytes per point, and
@@ -91,7 +96,7 @@ Run run(const std::vector<std::string>& args, const std::string& out = "/dev/nul
   Run r;
   pid_t pid = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  if (posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ) != 0) {
+  if (posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ) != 0) {  // (p: mpirun from PATH)
     posix_spawn_file_actions_destroy(&fa);
     return r;
   }
@@ -191,6 +196,8 @@ int main(int argc, char** argv) {
   int threads = 2;
   std::size_t restricted_up_to = 10000, refine_up_to = 10000, gudhi_up_to = 100000;
   std::uint64_t seed = 1;
+  int mpi_ranks = 0;
+  std::string mpiexec = "mpirun";
   std::filesystem::path bin = std::filesystem::canonical("/proc/self/exe").parent_path().parent_path(), keep;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -217,6 +224,8 @@ int main(int argc, char** argv) {
       else if (a == "--seed") seed = std::stoull(v);
       else if (a == "--bin") bin = v;
       else if (a == "--keep") keep = v;
+      else if (a == "--mpi-ranks") mpi_ranks = std::stoi(v);
+      else if (a == "--mpiexec") mpiexec = v;
       else throw std::invalid_argument("unknown option " + a);
     }
   } catch (const std::exception& e) {
@@ -310,6 +319,23 @@ int main(int argc, char** argv) {
       } catch (const std::exception& ex) {
         e["certify"]["verdict"] = std::string("no certificate: ") + ex.what();
       }
+      if (mpi_ranks > 0) {
+        std::fprintf(stderr, "bench_scaling: %s %zu: delcert-certify on 1 process and on %d MPI ranks, 1 thread each\n",
+                     c.manifold.c_str(), c.count, mpi_ranks);
+        std::vector<std::string> one = args, many = {mpiexec, "-n", std::to_string(mpi_ranks)};
+        one[std::find(one.begin(), one.end(), "--threads") - one.begin() + 1] = "1";
+        one.insert(one.begin() + 1, "--no-times");
+        many.insert(many.end(), one.begin(), one.end());
+        *std::find(many.begin(), many.end(), cert) = cert + ".mpi";
+        *std::find(one.begin(), one.end(), cert) = cert + ".one";
+        const Run a = run(one), b = run(many);
+        const auto bytes = [](const std::string& f) { std::ifstream in(f, std::ios::binary); return std::string(std::istreambuf_iterator<char>(in), {}); };
+        e["certify_mpi"] = json{{"ranks", mpi_ranks}, {"one_process_wall_s", a.wall}, {"ranks_wall_s", b.wall},
+                                {"speedup", b.wall > 0 ? a.wall / b.wall : 0.0}, {"one_process_peak_rss_mb", a.rss_mb},
+                                {"largest_rank_peak_rss_mb", b.rss_mb}, {"exit", {a.status, b.status}},
+                                {"certificates_identical", a.status == b.status && bytes(cert + ".one") == bytes(cert + ".mpi")}};
+        std::filesystem::remove(cert + ".one"), std::filesystem::remove(cert + ".mpi");
+      }
     }
     if (c.count <= gudhi_up_to && std::filesystem::exists(gudhi_bench)) {
       std::fprintf(stderr, "bench_scaling: %s %zu: bench_tangential (GUDHI)\n", c.manifold.c_str(), c.count);
@@ -399,6 +425,15 @@ int main(int argc, char** argv) {
                    e["points"].get<std::size_t>(), e["certify"]["wall_s"].get<double>(),
                    e["certify"]["wall_s"].get<double>() < 60 ? "met" : "NOT met", e["certify"]["peak_rss_mb"].get<double>(),
                    e["certify"]["peak_rss_mb"].get<double>() < 1536 ? "met" : "NOT met");
+  for (const auto& e : doc["cases"])
+    if (e.contains("certify_mpi")) {
+      const json& r = e["certify_mpi"];
+      std::fprintf(stderr, "certify on MPI ranks, %s %zu: 1 process %.1f s, %d ranks %.1f s (%.2fx); peak %.0f MB vs %.0f MB "
+                   "per rank; certificates %s\n", e["manifold"].get<std::string>().c_str(), e["points"].get<std::size_t>(),
+                   r["one_process_wall_s"].get<double>(), r["ranks"].get<int>(), r["ranks_wall_s"].get<double>(),
+                   r["speedup"].get<double>(), r["one_process_peak_rss_mb"].get<double>(), r["largest_rank_peak_rss_mb"].get<double>(),
+                   r["certificates_identical"].get<bool>() ? "identical" : "DIFFERENT");
+    }
   std::printf("%s\n", doc.dump(2).c_str());
   return 0;
 }

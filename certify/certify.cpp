@@ -10,6 +10,8 @@
 
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
+#include "certify/detail/world.hpp"
+#include "certify/distributed.hpp"
 #include "certify/intrinsic.hpp"
 #include "certify/restricted.hpp"
 #include "certify/sanity.hpp"
@@ -254,8 +256,28 @@ void keep_for_checks(StarReport& r, int m, bool verify) {
   if (!witness) std::vector<CellReport>().swap(r.star);
 }
 
+// The ranks of the run and the points each analyses (blocks[r] for rank r; none in one process).
+struct Distribution {
+  const detail::World* world;
+  std::vector<std::vector<int>> blocks;
+  bool root() const { return world->rank() == 0; }
+};
+
+// f(p, worker) for every point p this rank analyses (every point, in one process), writing
+// results[p]; then rank 0 receives the other ranks' results[p] (certify/distributed.hpp). Every
+// slot of `results` is then on rank 0 exactly what one process would have computed: f(p) depends
+// only on p and the inputs, which every rank holds whole.
+template <class R, class F>
+void for_each_point(const Distribution& D, std::vector<R>& results, int threads, F&& f) {
+  if (D.world->size() == 1) return detail::parallel_for(results.size(), threads, f);
+  const std::vector<int>& mine = D.blocks[D.world->rank()];
+  detail::parallel_for(mine.size(), threads, [&](std::size_t i, int w) { f(static_cast<std::size_t>(mine[i]), w); });
+  std::vector<std::string> all = D.world->gather(encode(results, mine));
+  for (std::size_t r = 1; r < all.size(); ++r) decode(all[r], D.blocks[r], results);
+}
+
 Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads,
-                    std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress) {
+                    std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress, const Distribution& D) {
   const std::size_t n = S.points->size();
   const int m = S.m;
   Stars st;
@@ -279,13 +301,13 @@ Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads
       for (int v : st.tops()[i]) st.at[next[v]++] = static_cast<int>(i);
   }
   st.reports.resize(n);
-  detail::parallel_for(n, threads, [&](std::size_t p, int w) {
+  for_each_point(D, st.reports, threads, [&](std::size_t p, int w) {
     const std::vector<Simplex> claimed = given ? st.claimed(p) : std::vector<Simplex>();
     st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed : nullptr, ctx[w]);
     keep_for_checks(st.reports[p], m, given != nullptr);
     if (progress) progress->add();
   });
-  if (!given) {
+  if (!given && D.root()) {
     auto& K = st.complex.simplices;
     for (const auto& r : st.reports)
       for (auto& s : r.simplices()) K.push_back(std::move(s));
@@ -572,7 +594,7 @@ void report_unclaimed(CheckEntry& e) {
 // measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
-                                  bool stars_are_the_complex, io::ProgressLine* progress) {
+                                  bool stars_are_the_complex, io::ProgressLine* progress, const Distribution& D) {
   CheckEntry secure(CheckId::secure_simplices);
   if (claimed)
     secure.claim = {{"secure", true},
@@ -588,11 +610,12 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   SecureParams sp{tp.eps, tp.delta, tp.upsilon0, tp.shortest, {}, {}, {}, {}};
   sp.prepare();
   std::vector<SecureReport> sr(n);
-  detail::parallel_for(n, threads, [&](std::size_t p, int w) {
+  for_each_point(D, sr, threads, [&](std::size_t p, int w) {
     if (reports[p].state != StarReport::State::proven) return;
     sr[p] = analyse_secure(S, static_cast<int>(p), reports[p].simplices(), sp, ctx[w], &reports[p]);
     if (progress) progress->add();
   });
+  if (!D.root()) return secure;  // another rank: its results are on rank 0
   long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0;
   std::map<std::string, long> reasons;
   for (std::size_t p = 0; p < n; ++p) {
@@ -1111,6 +1134,9 @@ Certificate run_certify(const CertifyOptions& o) {
   const std::clock_t cpu_start = std::clock();
   Certificate C;
   const int threads = std::max(1, o.threads);
+  const detail::World one_process;
+  Distribution D{o.world ? o.world : &one_process, {}};
+  const bool root = D.root();
 
   Inputs in = read_inputs(o);
   const io::ManifoldSpec& spec = in.spec;
@@ -1152,6 +1178,7 @@ Certificate run_certify(const CertifyOptions& o) {
   const bool on_M = sanity.off_manifold.empty();
   const exact::ImplicitSystem system(spec.equations, N);
   const detail::PointGrid grid(P, m);
+  for (int r = 0; r < D.world->size() && D.world->size() > 1; ++r) D.blocks.push_back(owned_points(grid, r, D.world->size()));
   phase("check 2 sparsity");
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
@@ -1165,8 +1192,20 @@ Certificate run_certify(const CertifyOptions& o) {
   std::optional<RadiusResult> radius;
   if (on_M) {
     phase("check 3 stars", P.size());
-    stars = analyse_stars(tangential_kind ? &*in.given : nullptr, S, threads, ctx, o.progress);
+    stars = analyse_stars(tangential_kind ? &*in.given : nullptr, S, threads, ctx, o.progress, D);
     watch.record(C, "stars");
+  }
+  if (!root) {  // another rank of an MPI job: its share of check 7, with the parameters rank 0 measured
+    if (on_M) {
+      const TheoremParams tp = theorem_parameters(decode_measured(D.world->broadcast({})));
+      check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind, nullptr, D);
+    }
+    exact::FilterStats mine;  // only the split loops' (rank 0 alone runs the rest)
+    for (auto& c : ctx) mine.merge(c.stats);
+    D.world->gather(encode_stats(mine));
+    return Certificate{};
+  }
+  if (on_M) {
     stars_entry = check_stars(*stars, m);
     consistency = check_consistency(*stars, S, ctx_consistency);
     protection = check_power_protection(*stars, claims.power_protection);
@@ -1248,10 +1287,11 @@ Certificate run_certify(const CertifyOptions& o) {
                    : std::nullopt;
     if (R && covering->verdict == Verdict::certified)
       meas.covering = exact::to_rational(std::nextafter(R->covering, INFINITY));
+    if (D.world->size() > 1) meas = decode_measured(D.world->broadcast(encode_measured(meas)));  // the same bits everywhere
     const TheoremParams tp = theorem_parameters(meas);
     phase("check 7 secure_simplices", P.size());
     secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind,
-                                    o.progress);
+                                    o.progress, D);
     theorem = theorem_report(tp, spec);
     watch.record(C, "secure_and_theorem");
   }
@@ -1282,6 +1322,10 @@ Certificate run_certify(const CertifyOptions& o) {
   if (o.progress) o.progress->clear();
 
   for (auto& c : ctx) C.filter.merge(c.stats);
+  if (D.world->size() > 1) {
+    const std::vector<std::string> others = D.world->gather(std::string());
+    for (std::size_t r = 1; r < others.size(); ++r) C.filter.merge(decode_stats(others[r]));
+  }
   C.filter.merge(ctx_sparsity.stats);
   C.filter.merge(ctx_consistency.stats);
   C.checks.push_back(std::move(sanity.entry));

@@ -29,6 +29,10 @@
 
 namespace delcert::certify {
 
+namespace detail {
+class World;
+}  // namespace detail
+
 // What the given complex is claimed to be. automatic: restricted for an OFF file (a surface
 // mesher's output), tangential otherwise. intrinsic: Del_M (check 14 compares).
 enum class ComplexKind { automatic, tangential, restricted, intrinsic };
@@ -50,9 +54,14 @@ struct CertifyOptions {
   // apart from the filter statistics and the times.
   bool force_exact = false;
   io::ProgressLine* progress = nullptr;  // a line on a terminal: the phases (presentation, never read back)
+  // The ranks of an MPI job (certify/detail/world.hpp), or null: this process alone. Every rank
+  // calls run_certify with the same options; rank 0's certificate is the single-process one (byte
+  // for byte), the other ranks' is empty.
+  const detail::World* world = nullptr;
 };
 
-// Throws io::InputError on bad input (exit status 2); never writes anything.
+// Throws io::InputError on bad input (exit status 2); never writes anything. In an MPI job, every
+// io::InputError is thrown before the ranks first exchange data, on every rank alike.
 Certificate run_certify(const CertifyOptions& options);
 
 }  // namespace delcert::certify

@@ -20,10 +20,16 @@
 #include "io/input_error.hpp"
 #include "io/progress.hpp"
 #include "io/spec.hpp"
+#include "certify/detail/world.hpp"
 #include "report/html_report.hpp"  // presentation only: reads the finished certificate
 
 int main(int argc, char** argv) {
   using namespace delcert;
+  // An MPI job when started by mpirun and built with -DDELCERT_MPI=ON (docs/design.md §4.11): every
+  // rank runs this program on the same arguments; rank 0 alone prints and writes.
+  const std::unique_ptr<certify::detail::World> world = certify::detail::make_world(argc, argv);
+  const bool root = world->rank() == 0;
+  if (!root && !std::freopen("/dev/null", "w", stdout)) return 3;  // (--help and --version: once, from rank 0)
   CLI::App app{"delcert-certify: exact certificates for tangential Delaunay complexes of manifolds.\n"
                "Verdict on the last line: CERTIFIED (exit 0), REFUTED (1), UNDECIDED (3); bad input or usage: 2."};
   app.set_version_flag("--version", "delcert-certify " DELCERT_VERSION, "print \"delcert-certify VERSION\" and exit");
@@ -71,7 +77,8 @@ int main(int argc, char** argv) {
     std::printf("verdict: UNDECIDED\n");
     return 3;
   }
-  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.threads == 0)  // (the ranks of an MPI job on one machine share its cores)
+    o.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / world->ranks_on_this_machine());
   try {
     // --out must not be (the same file as) an input, nor unwritable: checked before any work.
     if (!out.empty()) io::check_output_path(out, "--out", {o.manifold, o.points, o.complex, o.claims});
@@ -79,8 +86,10 @@ int main(int argc, char** argv) {
       return std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n", 2;
     if (!report_path.empty()) io::check_output_path(report_path, "--report", {o.manifold, o.points, o.complex, o.claims}, {out});
     io::ProgressLine progress = io::ProgressLine::on_stderr();  // on a terminal only; cleared before any output
-    o.progress = &progress;
+    o.progress = root ? &progress : nullptr;
+    o.world = world.get();
     certify::Certificate cert = certify::run_certify(o);
+    if (!root) return std::stoi(world->broadcast({}));  // rank 0's exit status, so that mpirun's is the verdict's
     std::vector<std::pair<std::string, std::string>> files;
     if (!out.empty()) files.emplace_back(out, cert.to_text(!no_times));
     if (!report_path.empty())
@@ -93,14 +102,19 @@ int main(int argc, char** argv) {
     certify::Verdict v = cert.overall();
     std::printf("verdict: %s\n", certify::to_string(v));
     std::fflush(stdout);
-    return v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;
+    const int status = v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;
+    if (world->size() > 1) world->broadcast(std::to_string(status));
+    return status;
   } catch (const io::InputError& e) {
-    std::cerr << "delcert-certify: " << e.what() << "\n";
+    // On every rank alike, before any exchange (run_certify's contract): each exits, rank 0 says why.
+    if (root) std::cerr << "delcert-certify: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
-    // Not bad input: an internal failure. Nothing was certified.
-    std::cerr << "delcert-certify: internal error: " << e.what() << "\n";
-    std::printf("verdict: UNDECIDED\n");
+    // Not bad input: an internal failure. Nothing was certified. The other ranks are stopped.
+    std::cerr << "delcert-certify: internal error" << (world->size() > 1 ? " on rank " + std::to_string(world->rank()) : "")
+              << ": " << e.what() << "\n";
+    if (root) std::printf("verdict: UNDECIDED\n"), std::fflush(stdout);
+    world->abort(3);
     return 3;
   }
 }

@@ -9,11 +9,12 @@ set -euo pipefail
 # python3-pytest tests it, python3-gudhi runs its GUDHI example (tests/python/).
 # chromium (headless) opens the HTML report in its test (tests/report/, label browser; python3 runs it); curl, ca-certificates
 # and openssl fetch and check the pinned three.js the report inlines (scripts/fetch_threejs.sh, after the packages).
+# libopenmpi-dev and openmpi-bin (mpirun) build and test delcert-certify as an MPI program (-DDELCERT_MPI=ON).
 PACKAGES=(build-essential cmake pkg-config libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev regina-normal-dev
           clang libclang-rt-14-dev
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-gudhi
-          chromium python3 curl ca-certificates openssl)
+          chromium python3 curl ca-certificates openssl libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

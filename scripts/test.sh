@@ -4,10 +4,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 if [ "${CI:-}" = "true" ]; then export DELCERT_WERROR=ON; fi
-bash scripts/build.sh
+# delcert-certify as an MPI program too (off by default), so that its 2-rank test runs.
+bash scripts/build.sh -DDELCERT_MPI=ON
 cd build
 # After setup.sh every optional part is there: its tests must be too, not quietly left out.
-for label in python browser install; do
+for label in python browser install mpi; do
   if ! ctest -N -L "$label" | grep -q "Total Tests: [1-9]"; then
     echo "test.sh: no tests with label $label were configured (see cmake's status lines in build/)" >&2
     exit 1

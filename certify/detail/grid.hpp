@@ -52,6 +52,8 @@ class PointGrid {
   // An upper bound on the distance between any two points, positive and finite (capped at
   // DBL_MAX): any r at least the true diameter covers every point (r = +inf always does).
   double diameter() const { return diameter_; }
+  // The point indices in cell order (cells in lexicographic order of their integer coordinates).
+  const std::vector<int>& order() const { return order_; }
 
  private:
   // floor(x / 2^e_) clamped to [k0, k1] of axis t, minus k0: exact, see grid.cpp.
