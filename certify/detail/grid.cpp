@@ -52,7 +52,10 @@
 // Cost: an index is two multiplications, a floor and a clamp (the old code: a subtraction, a
 // division and a floor); a query adds two nextafter per axis. The cell edge is the power of two
 // nearest (in ratio) to the old choice of three spacings, so cells are within a factor sqrt(2) of
-// the old ones per axis.
+// the old ones per axis. The cells of a query box are read from one of three tables: a dense
+// table over every cell (up to 2^24 cells: 1M points on S^2), else a dense table over the lines
+// of cells along the last axis with a binary search in each line (10M points on S^2: 1024^2 lines
+// instead of a hash lookup per cell), else a hash map of the occupied cells.
 
 namespace delcert::certify::detail {
 
@@ -165,17 +168,28 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
   std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) { return keys[a] < keys[b]; });
   ordered_.resize(n * N);
   for (std::size_t k = 0; k < n; ++k) std::copy_n(points.point(order_[k]).data(), N, ordered_.begin() + k * N);
-  for (std::size_t i = 0; i < n;) {
-    std::size_t j = i;
-    while (j < n && keys[order_[j]] == keys[order_[i]]) ++j;
-    cells_[keys[order_[i]]] = {static_cast<int>(i), static_cast<int>(j)};
-    i = j;
-  }
   const double total = total_cells();
+  const std::int64_t last_dim = axes_.empty() ? 1 : dims_.back();
+  const double lines = total / double(last_dim);  // exact: a product of integers below 2^62 over a factor
   if (dense_ok(total)) {
     dense_.assign(static_cast<std::size_t>(total) + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++dense_[keys[i] + 1];
     for (std::size_t c = 1; c < dense_.size(); ++c) dense_[c] += dense_[c - 1];
+  } else if (axes_.size() >= 2 && dense_ok(lines)) {
+    // key = line * last_dim + last-axis index (key()), so order_, sorted by key, is sorted by line
+    // and within a line by the last-axis index.
+    lines_.assign(static_cast<std::size_t>(lines) + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++lines_[keys[i] / last_dim + 1];
+    for (std::size_t l = 1; l < lines_.size(); ++l) lines_[l] += lines_[l - 1];
+    last_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) last_[k] = static_cast<std::int32_t>(keys[order_[k]] % last_dim);  // < 2^31
+  } else {
+    for (std::size_t i = 0; i < n;) {
+      std::size_t j = i;
+      while (j < n && keys[order_[j]] == keys[order_[i]]) ++j;
+      cells_[keys[order_[i]]] = {static_cast<int>(i), static_cast<int>(j)};
+      i = j;
+    }
   }
 }
 
@@ -217,7 +231,7 @@ void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& ou
     hi[t] = static_cast<std::int64_t>(std::min(b, k1_[t]) - k0_[t]);  // = index(t, U)
     cells *= double(hi[t] - lo[t] + 1);
   }
-  if (cells >= double(cells_.size()) && dense_.empty()) {  // cheaper to scan every occupied cell
+  if (!cells_.empty() && cells >= double(cells_.size())) {  // cheaper to scan every occupied cell
     for (const auto& [k, range] : cells_) {
       std::int64_t rest = k, idx[kMaxAxes] = {0, 0, 0, 0};
       for (int t = A - 1; t >= 0; --t) idx[t] = rest % dims_[t], rest /= dims_[t];
@@ -238,6 +252,13 @@ void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& ou
       std::copy(idx, idx + A, b);
       a[A - 1] = lo[A - 1], b[A - 1] = hi[A - 1];
       if (dense_[key(a)] < dense_[key(b) + 1]) out.push_back({dense_[key(a)], dense_[key(b) + 1]});
+    } else if (!lines_.empty()) {
+      // The line's points are sorted by last-axis index: two binary searches cut out [lo, hi].
+      std::int64_t line = 0;
+      for (int t = 0; t < A - 1; ++t) line = line * dims_[t] + idx[t];
+      const auto b = last_.begin() + lines_[line], e = last_.begin() + lines_[line + 1];
+      const auto from = std::lower_bound(b, e, lo[A - 1]), to = std::upper_bound(from, e, hi[A - 1]);
+      if (from < to) out.push_back({static_cast<int>(from - last_.begin()), static_cast<int>(to - last_.begin())});
     } else {
       for (idx[A - 1] = lo[A - 1]; idx[A - 1] <= hi[A - 1]; ++idx[A - 1]) {
         auto it = cells_.find(key(idx));

@@ -54,6 +54,8 @@ class PointGrid {
   double diameter() const { return diameter_; }
   // The point indices in cell order (cells in lexicographic order of their integer coordinates).
   const std::vector<int>& order() const { return order_; }
+  // Which cell table the queries read: "dense", "lines" or "cells" (for the tests).
+  const char* table() const { return !dense_.empty() ? "dense" : !lines_.empty() ? "lines" : "cells"; }
 
  private:
   // floor(x / 2^e_) clamped to [k0, k1] of axis t, minus k0: exact, see grid.cpp.
@@ -72,8 +74,13 @@ class PointGrid {
   double diameter_ = 0, spacing_ = 1;
   std::vector<int> order_;  // point indices sorted by cell key
   std::vector<double> ordered_;  // the points' coordinates in that order (n x N: the filter reads them in sequence)
-  std::unordered_map<std::int64_t, std::pair<int, int>> cells_;  // key -> [begin, end) in order_
-  std::vector<int> dense_;  // when the grid is small enough: key -> begin in order_ (CSR, #cells + 1)
+  // One of three cell tables (grid.cpp, "Cost"): when the grid is small enough, dense_: key -> begin
+  // in order_ (CSR, #cells + 1); else, when its lines along the last axis are few enough, lines_:
+  // line -> begin in order_ (CSR, #lines + 1) and last_: the last-axis index of each point of
+  // order_ (sorted within a line); else cells_: key -> [begin, end) of the occupied cells.
+  std::vector<int> dense_, lines_;
+  std::vector<std::int32_t> last_;
+  std::unordered_map<std::int64_t, std::pair<int, int>> cells_;
 };
 
 template <class F>

@@ -5,6 +5,7 @@
 
 #include <cfenv>
 #include <cfloat>
+#include <map>
 
 #include "exact/interval.hpp"
 #include "support.hpp"
@@ -42,6 +43,37 @@ TEST(PointGrid, CandidatesContainEveryPointOfTheBall) {
   }
 }
 
+
+// The three cell tables (dense, lines along the last axis, hash map of occupied cells) return the
+// same candidates: every point of the box, nothing else, for the same queries.
+TEST(PointGrid, EveryCellTableGivesTheBoxExactly) {
+  Rng rng(12);
+  io::PointSet P;
+  P.dimension = 3;
+  for (int i = 0; i < 3000; ++i) P.push_back(std::vector<double>{rng.uniform() * 2 - 1, rng.uniform() * 2 - 1, rng.uniform() * 0.5});
+  std::map<std::string, int> seen;
+  for (double hint : {0.0, 0x1p-8, 0x1p-11}) {
+    detail::PointGrid grid(P, 2, hint);
+    ++seen[grid.table()];
+    for (int q = 0; q < 300; ++q) {
+      std::vector<double> c{rng.uniform() * 2.4 - 1.2, rng.uniform() * 2.4 - 1.2, rng.uniform() * 0.7 - 0.1};
+      const double r = q % 10 == 0 ? 2.0 : rng.uniform() * 0.2;
+      std::vector<int> box;
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        bool in = true;
+        for (int k = 0; k < 3; ++k) in = in && std::abs(P.point(i)[k] - c[k]) <= r;
+        if (in) box.push_back(static_cast<int>(i));
+      }
+      const std::vector<int> cand = grid.candidates(c, r);
+      // Candidates are whole cells: a superset of the box, and within one cell edge of it.
+      EXPECT_TRUE(std::includes(cand.begin(), cand.end(), box.begin(), box.end())) << grid.table();
+      const double h = std::ldexp(1.0, grid.cell_exponent());
+      for (int i : cand)
+        for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(P.point(i)[k] - c[k]), r + h) << grid.table();
+    }
+  }
+  EXPECT_EQ(seen, (std::map<std::string, int>{{"cells", 1}, {"dense", 1}, {"lines", 1}}));
+}
 
 // Exact (rational) tests: |q_k - c_k| <= r for every k, and |q - c|^2 <= r^2.
 mpq_class q_of(double x) { return mpq_class(x); }
