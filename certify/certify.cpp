@@ -1178,7 +1178,8 @@ Certificate run_certify(const CertifyOptions& o) {
   const bool on_M = sanity.off_manifold.empty();
   const exact::ImplicitSystem system(spec.equations, N);
   const detail::PointGrid grid(P, m);
-  for (int r = 0; r < D.world->size() && D.world->size() > 1; ++r) D.blocks.push_back(owned_points(grid, r, D.world->size()));
+  if (D.world->size() > 1)
+    for (int r = 0; r < D.world->size(); ++r) D.blocks.push_back(owned_points(grid, r, D.world->size()));
   phase("check 2 sparsity");
   SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
   watch.record(C, "sparsity");
@@ -1287,7 +1288,7 @@ Certificate run_certify(const CertifyOptions& o) {
                    : std::nullopt;
     if (R && covering->verdict == Verdict::certified)
       meas.covering = exact::to_rational(std::nextafter(R->covering, INFINITY));
-    if (D.world->size() > 1) meas = decode_measured(D.world->broadcast(encode_measured(meas)));  // the same bits everywhere
+    if (D.world->size() > 1) D.world->broadcast(encode_measured(meas));  // the other ranks decode these very bits
     const TheoremParams tp = theorem_parameters(meas);
     phase("check 7 secure_simplices", P.size());
     secure = check_secure_simplices(tp, S, stars->reports, threads, ctx, claims.secure, !restricted_kind && !intrinsic_kind,
