@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -60,8 +61,9 @@ constexpr std::size_t kMaxWrapCells = 20000;
 constexpr int kRayAttempts = 6;
 constexpr double kRayWeightStep = 0.37;
 // Check 7 (Definition 3.1): the points of W = B(p, kSecureNeighbourhoodEps * eps) are tested,
-// at most kMaxSecureNeighbourhood of them (bounded work per point: a grid query, a floating-point
-// bound per point of W (detail/far_filter.hpp) and an interval projection of the few it keeps).
+// with bounded work per point: one grid query of the box where a point can matter
+// (analyse_secure), at most kMaxSecureNeighbourhood points of W in it, a floating-point bound per
+// point (detail/far_filter.hpp) and an interval projection of the few it keeps.
 constexpr double kSecureNeighbourhoodEps = 5;
 constexpr int kMaxSecureNeighbourhood = 50000;
 
@@ -109,9 +111,11 @@ std::vector<IA> gram_enclosure(const exact::TangentSpace& T, int m) {
 
 // The Local of the points `glob` (glob[0] = p, the rest increasing). T may be null (the exact
 // tangent space is then built only if the chart is needed). tangent_only: only the enclosures of
-// b(x) (check 7); s(x) is left 0 and drows empty.
+// b(x) (check 7); s(x) is left 0 and drows empty. coords: when given, coords[l] holds the
+// coordinates of glob[l] (equal to the points', e.g. the grid's copy, read in sequence).
 Local make_local_of(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
-                    std::vector<int> glob, double radius, bool tangent_only) {
+                    std::vector<int> glob, double radius, bool tangent_only,
+                    const std::vector<const double*>* coords = nullptr) {
   const io::PointSet& P = *S.points;
   Local L{S.m, P.dimension, std::move(glob), &P, T, S.system, std::nullopt, std::nullopt, {}, {}, {}, radius, false};
   L.all = L.global.size() == P.size();
@@ -120,7 +124,7 @@ Local make_local_of(const StarSettings& S, const exact::TangentSpace* T, const s
   if (!tangent_only) L.drows.assign(L.global.size() * (m + 1), 0);
   const auto pp = P.point(L.global[0]);
   for (std::size_t l = 1; l < L.global.size(); ++l) {
-    auto x = P.point(L.global[l]);
+    const double* x = coords ? (*coords)[l] : P.point(L.global[l]).data();
     IA* r = L.rows.data() + l * (m + 1);
     for (int i = 0; i < N; ++i) {
       IA d = IA(x[i]) - IA(pp[i]);
@@ -134,13 +138,29 @@ Local make_local_of(const StarSettings& S, const exact::TangentSpace* T, const s
   return L;
 }
 
+// The Local of p and the points `near` ((index, coordinates) pairs, in any order, possibly with
+// repeats; p itself left out): sorted by index, each once. Clears `near`.
+Local make_local_of_near(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
+                         int p, std::vector<std::pair<int, const double*>>& near, double radius, bool tangent_only) {
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first == b.first; }), near.end());
+  std::vector<int> glob(near.size() + 1);
+  std::vector<const double*> coords(near.size() + 1, S.points->point(p).data());
+  glob[0] = p;
+  for (std::size_t k = 0; k < near.size(); ++k) glob[k + 1] = near[k].first, coords[k + 1] = near[k].second;
+  near.clear();
+  return make_local_of(S, T, U, gram, std::move(glob), radius, tangent_only, &coords);
+}
+
 // The Local of every point within `radius` of p (and possibly more: the grid's superset).
 Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std::vector<IA>& U, const std::vector<IA>& gram,
                  int p, double radius) {
-  std::vector<int> glob{p};
-  for (int g : S.grid->ball(S.points->point(p), radius))
-    if (g != p) glob.push_back(g);
-  return make_local_of(S, T, U, gram, std::move(glob), radius, false);
+  thread_local std::vector<std::pair<int, const double*>> near;  // scratch (capacity reused)
+  near.clear();
+  S.grid->visit_ball(S.points->point(p), radius, [&](int q, const double* x) {
+    if (q != p) near.emplace_back(q, x);
+  });
+  return make_local_of_near(S, T, U, gram, p, near, radius, false);
 }
 
 // Enclosure of a cell's centre (y = 2z with c = p + U z) and R^2 = z^T G z from the interval rows:
@@ -519,8 +539,21 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   if (prot)
     need = std::max(need, (IA(1 + 0x1p-20) * (Rr + exact::sqrt(IA(R.radius2.lo, R.radius2.hi) + to_interval_number(prot->enclosure())))).sup());
   need_radius = std::max(need_radius, need);
+  // The points of L farther than rho >= need from p are not evaluated: for them
+  // power = |q - c|^2 - R^2 >= (|q - p| - R)^2 - R^2 > rho^2 - 2 rho R (|p - c| = R), which is
+  // positive (rho >= 2.25 R) and above the protection claim (rho >= the claim's radius above),
+  // so they hold no conflict, tie or protection failure; rho^2 - 2 rho R enters the margin's lower
+  // bound when one was left out. rho = 3R (when need is below it) keeps that bound, 3 R^2, above
+  // the tested minimum in practice: a cell's nearest non-vertex point is normally much closer.
+  const double rho = std::max(need, (IA(3) * Rr).sup());
+  const double rho2 = (IA(rho) * IA(rho)).sup();
+  bool left_out = false;
   exact::Interval margin{INFINITY, INFINITY};
   for (int q = 1; q < L.size(); ++q) {
+    if (L.row(q)[m].inf() > rho2) {  // |q - p|^2 > rho^2
+      left_out = true;
+      continue;
+    }
     if (std::find(c.begin(), c.begin() + m + 1, q) != c.begin() + m + 1) continue;
     exact::Interval pw = box.ok ? to_interval(power_box(L, box, q)) : exact::enclose(tc.power_exact(q));
     // The box (or exact) enclosure contains the exact power: a positive lower bound is its sign.
@@ -540,6 +573,7 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
     if (pw.lo < margin.lo) margin.lo = pw.lo, R.margin_point = L.global[q];
     margin.hi = std::min(margin.hi, pw.hi);
   }
+  if (left_out) margin.lo = std::min(margin.lo, (IA(rho) * IA(rho) - IA(2) * IA(rho) * Rr).inf());
   if (!L.all) {  // untested points are farther than r from p: power > r^2 - 2 r R
     IA far = IA(L.radius) * IA(L.radius) - IA(2) * IA(L.radius) * Rr;
     margin.lo = std::min(margin.lo, far.inf());
@@ -892,28 +926,55 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
   // W: every grid point of the ball. Its points that FarFilter proves projected beyond reach_all
   // are left out of L (they are protected for every cell, so testing them could only confirm it);
   // the star's vertices are always in. The rest are projected in interval arithmetic as before.
-  std::vector<int> vertices;
-  for (const auto& s : star)
+  // Scratch reused across the points of this thread (check 7 runs once per point).
+  thread_local std::vector<std::pair<int, const double*>> kept;  // (index, coordinates)
+  kept.clear();
+  for (const auto& s : star)  // the star's vertices (in the ball: r covers them)
     for (int v : s)
-      if (v != p) vertices.push_back(v);
-  std::sort(vertices.begin(), vertices.end());
+      if (v != p) kept.emplace_back(v, P.point(v).data());
   std::vector<double> ulo(U.size()), uhi(U.size()), glo(Gi.size()), ghi(Gi.size());
   for (std::size_t i = 0; i < U.size(); ++i) ulo[i] = U[i].inf(), uhi[i] = U[i].sup();
   for (std::size_t i = 0; i < Gi.size(); ++i) glo[i] = Gi[i].inf(), ghi[i] = Gi[i].sup();
   const detail::FarFilter far(P.point(p), ulo, uhi, glo, ghi, m, reach_all);
-  std::vector<int> glob{p};
-  std::size_t w_size = 1;  // p and the rest of W
-  S.grid->visit_ball(P.point(p), r, [&](int q, const double* x) {
-    if (q == p) return;
-    ++w_size;
-    if (!far.beyond(std::span<const double>(x, N)) || std::binary_search(vertices.begin(), vertices.end(), q)) glob.push_back(q);
-  });
+  // Only the box of W where a point can be projected within reach_all is scanned: for v = x - p
+  // with |v| <= r and |P_T v| <= a (P_T the orthogonal projector onto T_p, a^2 >= reach_all),
+  //   |v_i| = |(P_T e_i).(P_T v) + (P_N e_i).(P_N v)| <= alpha_i a + beta_i r =: w_i,
+  // alpha_i = |P_T e_i|, beta_i = |P_N e_i| = sqrt(1 - alpha_i^2), alpha_i^2 = e_i^T P_T e_i =
+  // u_i^T G^-1 u_i (u_i the i-th row of the exact basis U: P_T = U G^-1 U^T). So every point of
+  // the ball outside the box |v_i| <= w_i is projected beyond reach_all, protected for every cell
+  // like those FarFilter discards. Upper bounds of alpha_i, beta_i, a and w_i: interval
+  // arithmetic on the enclosures (upward rounding is on); a NaN or infinite bound keeps w_i = r.
+  std::vector<double> half(N, r);
+  if (reach_all >= 0 && reach_all <= DBL_MAX) {
+    const IA a = exact::sqrt(IA(reach_all));
+    for (int i = 0; i < N; ++i) {
+      IA alpha2(0);
+      for (int k = 0; k < m; ++k)
+        for (int l = 0; l < m; ++l) alpha2 += U[i * m + k] * Gi[k * m + l] * U[i * m + l];
+      const IA alpha = exact::sqrt(IA(std::max(0.0, alpha2.sup()))),
+               beta = exact::sqrt(IA(std::max(0.0, (IA(1) - alpha2).sup())));
+      const double w = (alpha * a + beta * IA(r)).sup();
+      if (w < r) half[i] = w;
+    }
+  }
+  std::size_t w_size = 1;  // p and the points of W in the box
+  // The coordinates are the grid's copy, read in sequence; the filter unrolled for the common
+  // dimensions (the same test: FarFilter::beyond_in).
+  auto scan = [&]<int NN, int MM>() {
+    S.grid->visit_ball(P.point(p), r, half, [&](int q, const double* x) {
+      if (q == p) return;
+      ++w_size;
+      if (!far.beyond_in<NN, MM>(x)) kept.emplace_back(q, x);
+    });
+  };
+  if (N == 3 && m == 2) scan.template operator()<3, 2>();
+  else if (N == 4 && m == 3) scan.template operator()<4, 3>();
+  else scan.template operator()<0, 0>();
   if (w_size > static_cast<std::size_t>(kMaxSecureNeighbourhood)) {  // bounded work per point
     out.undecided = static_cast<long>(star.size());
     return out;
   }
-  std::sort(glob.begin() + 1, glob.end());
-  Local L = make_local_of(S, T ? &*T : nullptr, U, Gram, std::move(glob), r, /*tangent_only=*/true);
+  Local L = make_local_of_near(S, T ? &*T : nullptr, U, Gram, p, kept, r, /*tangent_only=*/true);
   std::vector<mpq_class> Gq, Giq;  // exact G = U^T U and its inverse, only when needed
   std::vector<IA> b(L.size() * m, IA(0));  // b(x) = U^T (x - p) per local point, row-major
   std::vector<IA> t(L.size(), IA(0));

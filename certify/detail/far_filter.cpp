@@ -50,16 +50,10 @@
 
 namespace delcert::certify::detail {
 
-namespace {
-constexpr int kMaxFilterM = 8;
-constexpr double kInflate = 1 + 0x1p-40;
-constexpr double kTiny = 0x1p-999;  // 2 * 2^-1000, step 7
-}  // namespace
-
 FarFilter::FarFilter(std::span<const double> p, std::span<const double> u_lo, std::span<const double> u_hi,
                      std::span<const double> gi_lo, std::span<const double> gi_hi, int m, double threshold)
     : N_(static_cast<int>(p.size())), m_(m), p_(p), threshold_(threshold) {
-  if (m < 1 || m > kMaxFilterM || N_ > 2040 || u_lo.size() != std::size_t(N_ * m) || u_hi.size() != u_lo.size() ||
+  if (m < 1 || m > kMaxM || N_ > 2040 || u_lo.size() != std::size_t(N_ * m) || u_hi.size() != u_lo.size() ||
       gi_lo.size() != std::size_t(m * m) || gi_hi.size() != gi_lo.size())
     throw std::invalid_argument("FarFilter: dimensions do not match");
   const double u = 0x1p-52;
@@ -84,25 +78,6 @@ FarFilter::FarFilter(std::span<const double> p, std::span<const double> u_lo, st
   }
   c1_ *= kInflate, c2_ *= kInflate;
   if (!(threshold_ >= 0)) threshold_ = NAN;  // never discard
-}
-
-bool FarFilter::beyond(std::span<const double> x) const {
-  std::array<double, kMaxFilterM> b{};
-  double S = 0;
-  for (int i = 0; i < N_; ++i) {
-    const double d = x[i] - p_[i];
-    S += std::abs(d);
-    const double* row = u_.data() + std::size_t(i) * m_;
-    for (int a = 0; a < m_; ++a) b[a] += row[a] * d;
-  }
-  double beta = 0, Q = 0;
-  for (int a = 0; a < m_; ++a) beta = std::max(beta, std::abs(b[a]));
-  for (int a = 0; a < m_; ++a)
-    for (int k = 0; k < m_; ++k) Q += b[a] * g_[a * m_ + k] * b[k];
-  if (!(Q <= DBL_MAX) || !(S <= DBL_MAX) || !(beta <= DBL_MAX)) return false;  // step 8 (NaN fails too)
-  const double E = c_ * S * kInflate + 0x1p-1020;
-  const double R = (threshold_ + c1_ * beta * beta + c2_ * E * beta) * kInflate + kTiny * (beta + 1);
-  return Q > R;
 }
 
 }  // namespace delcert::certify::detail

@@ -40,7 +40,8 @@
 //    subtraction of two integers whose difference lies in [0, 2^31) is exact. So index is the
 //    MATHEMATICAL function clamp(floor(x / h), k0, k1) - k0 of the real x: monotone in x and
 //    independent of the rounding mode (values beyond 2^1001 clamp to the right end by 1.).
-// 4. A query (c, r): every q with |q_k - c_k| <= r satisfies L <= c_k - r <= q_k <= c_k + r <= U
+// 4. A query (c, r) (r may differ per axis: the same argument axis by axis): every q with
+//    |q_k - c_k| <= r satisfies L <= c_k - r <= q_k <= c_k + r <= U
 //    with L = nextafter(fl(c_k - r), -inf), U = nextafter(fl(c_k + r), +inf): in every rounding mode
 //    fl(v) is one of the two doubles bracketing v (or v itself), so its predecessor is <= v and its
 //    successor >= v, also when fl overflows (+-inf, or +-DBL_MAX under a directed mode whose
@@ -209,6 +210,18 @@ std::vector<int> PointGrid::candidates(std::span<const double> c, double r) cons
 }
 
 void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& out) const {
+  double half[kMaxAxes];
+  for (double& h : half) h = r;
+  gather_box(c, half, out);
+}
+
+void PointGrid::gather(std::span<const double> c, std::span<const double> half, std::vector<Run>& out) const {
+  double h[kMaxAxes] = {0, 0, 0, 0};
+  for (std::size_t t = 0; t < axes_.size(); ++t) h[t] = half[axes_[t]];
+  gather_box(c, h, out);
+}
+
+void PointGrid::gather_box(std::span<const double> c, const double* half, std::vector<Run>& out) const {
   out.clear();
   const int A = static_cast<int>(axes_.size());
   const Run all{0, static_cast<int>(order_.size())};
@@ -219,7 +232,7 @@ void PointGrid::gather(std::span<const double> c, double r, std::vector<Run>& ou
   std::int64_t lo[kMaxAxes] = {0, 0, 0, 0}, hi[kMaxAxes] = {0, 0, 0, 0};
   double cells = 1;
   for (int t = 0; t < A; ++t) {
-    const double x = c[axes_[t]];
+    const double x = c[axes_[t]], r = half[t];
     // Proof step 4: L <= c - r and U >= c + r in every rounding mode; a, b as in step 1.
     const double a = scaled_floor(std::nextafter(x - r, -INFINITY)), b = scaled_floor(std::nextafter(x + r, INFINITY));
     if (std::isnan(a) || std::isnan(b)) {  // NaN centre or radius: every point

@@ -43,6 +43,10 @@ class PointGrid {
   // copy, read in sequence (N doubles, equal to points.point(index)).
   template <class F>
   void visit_ball(std::span<const double> c, double r, F&& f) const;
+  // The same for the points of ball(c, r) that are also in the box |q_k - c_k| <= half[k] (half:
+  // N non-negative half-widths; a superset: the box is applied on the grid's axes only, by cells).
+  template <class F>
+  void visit_ball(std::span<const double> c, double r, std::span<const double> half, F&& f) const;
 
   // The cell edge 2^cell_exponent() (a power of two, possibly subnormal).
   int cell_exponent() const { return e_; }
@@ -65,6 +69,10 @@ class PointGrid {
   static double filter_radius2(double r) { return r * r * (1 + 0x1p-40); }  // see grid.cpp
   using Run = std::pair<int, int>;  // [begin, end) in order_
   void gather(std::span<const double> c, double r, std::vector<Run>& out) const;  // the candidates' runs
+  void gather(std::span<const double> c, std::span<const double> half, std::vector<Run>& out) const;
+  void gather_box(std::span<const double> c, const double* half, std::vector<Run>& out) const;  // per grid axis
+  template <class F>
+  void visit_runs(std::span<const double> c, double r, const std::vector<Run>& runs, F&& f) const;
   const io::PointSet& points_;
   std::vector<int> axes_;          // up to kMaxAxes coordinate indices
   std::vector<double> k0_, k1_;    // per axis: floor(lo / 2^e), floor(hi / 2^e) (integers)
@@ -87,6 +95,18 @@ template <class F>
 void PointGrid::visit_ball(std::span<const double> c, double r, F&& f) const {
   thread_local std::vector<Run> runs;  // scratch (its capacity is reused)
   gather(c, r, runs);
+  visit_runs(c, r, runs, f);
+}
+
+template <class F>
+void PointGrid::visit_ball(std::span<const double> c, double r, std::span<const double> half, F&& f) const {
+  thread_local std::vector<Run> runs;
+  gather(c, half, runs);
+  visit_runs(c, r, runs, f);
+}
+
+template <class F>
+void PointGrid::visit_runs(std::span<const double> c, double r, const std::vector<Run>& runs, F&& f) const {
   const int N = points_.dimension;
   const double r2 = filter_radius2(r);
   const bool all = !(r2 > 1e-280) || !(r2 <= DBL_MAX);  // too small to filter safely, infinite or NaN: keep all

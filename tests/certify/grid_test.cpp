@@ -75,6 +75,48 @@ TEST(PointGrid, EveryCellTableGivesTheBoxExactly) {
   EXPECT_EQ(seen, (std::map<std::string, int>{{"cells", 1}, {"dense", 1}, {"lines", 1}}));
 }
 
+// visit_ball with half-widths per axis (check 7's box of W): every point of the ball that is in
+// the box, nothing outside the ball, nothing beyond a cell edge of the box; on each cell table.
+TEST(PointGrid, EveryCellTableGivesTheBallInABox) {
+  Rng rng(13);
+  io::PointSet P;
+  P.dimension = 3;
+  // The longest axes first in the grid (1, 2, 0): the half-widths must follow the coordinates.
+  for (int i = 0; i < 3000; ++i) P.push_back(std::vector<double>{rng.uniform() * 0.5, rng.uniform() * 2 - 1, rng.uniform() * 1.6 - 0.8});
+  for (double hint : {0.0, 0x1p-8, 0x1p-11}) {
+    detail::PointGrid grid(P, 2, hint);
+    const double h = std::ldexp(1.0, grid.cell_exponent());
+    for (int q = 0; q < 300; ++q) {
+      std::vector<double> c{rng.uniform() * 0.7 - 0.1, rng.uniform() * 2.4 - 1.2, rng.uniform() * 2 - 1};
+      const double r = q % 10 == 0 ? 2.0 : rng.uniform() * 0.3;
+      std::vector<double> half(3);
+      for (double& w : half) w = q % 7 == 0 ? 0.0 : q % 5 == 0 ? 3 * r : rng.uniform() * r;
+      std::vector<int> visited;
+      grid.visit_ball(c, r, half, [&](int i, const double* x) {
+        visited.push_back(i);
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(x[k], P.point(i)[k]);
+      });
+      std::sort(visited.begin(), visited.end());
+      EXPECT_TRUE(std::adjacent_find(visited.begin(), visited.end()) == visited.end()) << "a point visited twice";
+      const std::vector<int> ball = grid.ball(c, r);
+      EXPECT_TRUE(std::includes(ball.begin(), ball.end(), visited.begin(), visited.end())) << grid.table();
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        mpq_class s = 0;
+        bool in_box = true;
+        for (int k = 0; k < 3; ++k) {
+          const mpq_class d = mpq_class(P.point(i)[k]) - mpq_class(c[k]);
+          s += d * d;
+          in_box = in_box && abs(d) <= mpq_class(half[k]);
+        }
+        if (in_box && s <= mpq_class(r) * mpq_class(r))
+          EXPECT_TRUE(std::binary_search(visited.begin(), visited.end(), static_cast<int>(i))) << grid.table() << " point " << i;
+      }
+      for (int i : visited)
+        for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(P.point(i)[k] - c[k]), half[k] + h) << grid.table();
+    }
+  }
+}
+
 // Exact (rational) tests: |q_k - c_k| <= r for every k, and |q - c|^2 <= r^2.
 mpq_class q_of(double x) { return mpq_class(x); }
 bool in_box_exact(std::span<const double> q, std::span<const double> c, double r) {

@@ -56,6 +56,46 @@ TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBack
   }
 }
 
+TEST(SecureSimplices, APointFarAlongTheNormalButProjectedInsideIsTested) {
+  // W = B(p, 5 eps) may hold points far from p along the normal whose projection onto T_p falls
+  // inside a cell's circle: with eps = 1 the antipode q = (0, 0, -1) of p = (0, 0, 1) is in W
+  // and projects onto p itself, at distance r from every projected circumcentre: no cell is
+  // delta-protected, and q is the named point. Check 7 scans only the box of W where a point can
+  // project within 2 eps + delta; the box must reach down the normal to hold q.
+  io::PointSet P;
+  P.dimension = 3;
+  P.push_back(std::vector<double>{0, 0, 1});
+  P.push_back(std::vector<double>{0.1, 0, 1});
+  P.push_back(std::vector<double>{0, 0.1, 1});
+  P.push_back(std::vector<double>{-0.1, 0, 1});
+  P.push_back(std::vector<double>{0, -0.1, 1});
+  P.push_back(std::vector<double>{0, 0, -1});
+  io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
+  exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
+  detail::PointGrid grid(P, 2);
+  StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
+  exact::FilterContext ctx;
+  StarReport star = analyse_star(S, 0, nullptr, ctx);
+  std::vector<Simplex> cells = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 1, 4}};
+  SecureParams sp{mpq_class(1), mpq_class(1, 1000), mpq_class(1, 100), exact::to_rational(0.1), {}, {}, {}, {}};
+  sp.prepare();
+  for (bool exact_only : {false, true}) {
+    exact::FilterContext c2;
+    c2.force_exact = exact_only;
+    for (const StarReport* report : std::array<const StarReport*, 2>{nullptr, &star}) {
+      SecureReport R = analyse_secure(S, 0, cells, sp, c2, report);
+      EXPECT_EQ(R.secure, 0);
+      ASSERT_EQ(R.insecure, 4);
+      for (const auto& [s, why] : R.failures) EXPECT_EQ(why, "not delta-protected (point 5)");
+    }
+  }
+  // Without the antipode the same cells are secure (the test above).
+  P.coordinates.resize(5 * 3);
+  detail::PointGrid grid5(P, 2);
+  S.grid = &grid5;
+  EXPECT_EQ(analyse_secure(S, 0, cells, sp, ctx).secure, 4);
+}
+
 // A Fibonacci sample of the unit sphere (its poles are a little irregular).
 io::PointSet fibonacci_points(int n) {
   io::PointSet P;
