@@ -108,8 +108,9 @@ TEST(PointGrid, EveryCellTableGivesTheBallInABox) {
           s += d * d;
           in_box = in_box && abs(d) <= mpq_class(half[k]);
         }
-        if (in_box && s <= mpq_class(r) * mpq_class(r))
+        if (in_box && s <= mpq_class(r) * mpq_class(r)) {
           EXPECT_TRUE(std::binary_search(visited.begin(), visited.end(), static_cast<int>(i))) << grid.table() << " point " << i;
+        }
       }
       for (int i : visited)
         for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(P.point(i)[k] - c[k]), half[k] + h) << grid.table();

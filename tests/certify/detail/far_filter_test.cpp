@@ -90,9 +90,14 @@ int check_frame(const Frame& F, double x_scale, std::mt19937_64& rng, int querie
           beyond = far.beyond(x);
           // The unrolled instances check 7 uses are the same test; other fixed dimensions than
           // the constructor's prove nothing.
-          if (F.N == 3 && F.m == 2) EXPECT_EQ((far.beyond_in<3, 2>(x.data())), beyond);
-          if (F.N == 4 && F.m == 3) EXPECT_EQ((far.beyond_in<4, 3>(x.data())), beyond);
-          if (F.N != 4 || F.m != 3) EXPECT_FALSE((far.beyond_in<4, 3>(x.data())));
+          if (F.N == 3 && F.m == 2) {
+            EXPECT_EQ((far.beyond_in<3, 2>(x.data())), beyond);
+          }
+          if (F.N == 4 && F.m == 3) {
+            EXPECT_EQ((far.beyond_in<4, 3>(x.data())), beyond);
+          } else {
+            EXPECT_FALSE((far.beyond_in<4, 3>(x.data())));
+          }
         }
         if (beyond) {
           ++said;
