@@ -543,9 +543,9 @@ CellReport test_list(const StarSettings& S, const Local& L, const List& c, doubl
   // power = |q - c|^2 - R^2 >= (|q - p| - R)^2 - R^2 > rho^2 - 2 rho R (|p - c| = R), which is
   // positive (rho >= 2.25 R) and above the protection claim (rho >= the claim's radius above),
   // so they hold no conflict, tie or protection failure; rho^2 - 2 rho R enters the margin's lower
-  // bound when one was left out. rho = 3R (when need is below it) keeps that bound, 3 R^2, above
-  // the tested minimum in practice: a cell's nearest non-vertex point is normally much closer.
-  const double rho = std::max(need, (IA(3) * Rr).sup());
+  // bound when one was left out. rho = 2.5R (when need is below it) keeps that bound, 1.25 R^2,
+  // above the tested minimum in practice: a cell's nearest non-vertex point is normally closer.
+  const double rho = std::max(need, (IA(2.5) * Rr).sup());
   const double rho2 = (IA(rho) * IA(rho)).sup();
   bool left_out = false;
   exact::Interval margin{INFINITY, INFINITY};

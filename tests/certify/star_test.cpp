@@ -1,6 +1,6 @@
 // The stars (check 3) leave out of a cell's power tests the points farther from p than a radius
-// rho >= 3R that also covers the power-protection claim (star.cpp, test_list). These tests put
-// the one point that matters just beyond 3R: the margin's lower bound must stay below its power,
+// rho >= 2.5R that also covers the power-protection claim (star.cpp, test_list). These tests put
+// the one point that matters beyond 3R: the margin's lower bound must stay below its power,
 // and a claim it violates must be found.
 #include <gtest/gtest.h>
 

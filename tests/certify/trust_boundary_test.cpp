@@ -186,7 +186,7 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // grid's table of lines beyond 2^24 cells (detail/grid.*, ~50 with its comment): 10254, so
   // 10300. A reviewer reads the byte format as part of the checker: what rank 0 decodes is what
   // it certifies from. Check 7's box of W where a point can matter and the stars' cutoff of each
-  // cell's power tests at rho >= 3R, each with its proof (~60): 10360, so 10400.
+  // cell's power tests at rho >= 2.5R, each with its proof (~60): 10360, so 10400.
   EXPECT_LT(check_directory("certify", kAllowedInCertify), 10400) << "certify/ should stay small enough to read whole";
 }
 
