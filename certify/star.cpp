@@ -755,6 +755,32 @@ int greater(const mpq_class& a, const mpq_class& b) { return a > b ? 1 : 0; }
 IA lower_max(const IA& a, const IA& b) { return exact::interval_max(a, b); }
 mpq_class lower_max(const mpq_class& a, const mpq_class& b) { return a > b ? a : b; }
 
+// The projected circumcentre c' = p + U w of the cell c (local indices, c[0] = p) from the rows
+// b(x) and t(x) = |pi_p(x) - p|^2 of its vertices: y = 2w solves B y = h (B the rows b(v_i), h_i =
+// t(v_i)) by Cramer's rule, and r^2 = w^T G w. Returns 1 with y and r2 set, 0 when det B = 0,
+// -1 when an interval determinant does not exclude 0.
+template <class T>
+int projected_circumcentre(const List& c, const std::vector<T>& b, const std::vector<T>& t, const std::vector<T>& G, int m,
+                           std::array<T, kMaxM>& y, T& r2) {
+  std::array<T, kMaxM * kMaxM> A;
+  std::array<T, kMaxM> h;
+  A.fill(T(0));
+  h.fill(T(0));
+  for (int i = 0; i < m; ++i) {
+    for (int a = 0; a < m; ++a) A[i * m + a] = b[c[i + 1] * m + a];
+    h[i] = t[c[i + 1]];
+  }
+  T d = determinant(A.data(), m);
+  if (greater(d, T(0)) != 1 && greater(T(0), d) != 1) return greater(d, T(0)) == 0 && greater(T(0), d) == 0 ? 0 : -1;
+  y.fill(T(0));
+  exact::cramer_solve(A.data(), h.data(), d, m, y.data());
+  r2 = T(0);
+  for (int a = 0; a < m; ++a)
+    for (int k = 0; k < m; ++k) r2 += y[a] * G[a * m + k] * y[k];
+  r2 = r2 / T(4);
+  return 1;
+}
+
 // The conditions of Definition 3.1 for one cell, in number type T (IA: enclosures; mpq_class:
 // exact). rows: b(x) (m entries) per local point; t: |pi_p(x) - p|^2 = b^T G^-1 b per local
 // point. Returns "" when secure, else the first failed condition; `undecided` when an interval
@@ -770,27 +796,14 @@ std::string secure_cell(const Local& L, const List& c, const std::vector<int>& b
     if (g < 0) undecided = true;
     return g == 1 ? what : "";
   };
-  std::array<T, kMaxM * kMaxM> A;
-  std::array<T, kMaxM> h;
-  A.fill(T(0));
-  h.fill(T(0));
-  for (int i = 0; i < m; ++i) {
-    for (int a = 0; a < m; ++a) A[i * m + a] = b[c[i + 1] * m + a];
-    h[i] = t[c[i + 1]];
-  }
-  T d = determinant(A.data(), m);
-  if (greater(d, T(0)) != 1 && greater(T(0), d) != 1) {
-    if (greater(d, T(0)) == 0 && greater(T(0), d) == 0) return "degenerate projection";
+  std::array<T, kMaxM> y;  // y = 2w, the projected circumcentre c' = p + U w
+  T r2(0);
+  const int centre = projected_circumcentre(c, b, t, G, m, y, r2);
+  if (centre != 1) {
+    if (centre == 0) return "degenerate projection";
     undecided = true;
     return "";
   }
-  std::array<T, kMaxM> y;  // y = 2w, the projected circumcentre c' = p + U w (Cramer's rule)
-  y.fill(T(0));
-  exact::cramer_solve(A.data(), h.data(), d, m, y.data());
-  T r2(0);
-  for (int a = 0; a < m; ++a)
-    for (int k = 0; k < m; ++k) r2 += y[a] * G[a * m + k] * y[k];
-  r2 = r2 / T(4);
   std::string f;
   if (!(f = fail_or(greater(r2, eps2) == 1 ? 1 : greater(eps2, r2) == 1 ? 0 : -1, "circumradius >= eps")).empty()) return f;
   // Squared distances between the projected vertices (vertex 0 is p: b = 0, t = 0).
@@ -917,12 +930,47 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
     exact::adjugate(G.data(), m, Gi.data());
     for (IA& x : Gi) x = x / d;  // G is positive definite: d > 0
   }
-  // The points that can matter for delta-protection are those projected within 2r + delta of p: a
-  // point projected farther is protected for every cell (r < eps, so 2 eps + delta bounds every
-  // cell's reach).
-  const double reach_all = (exact::square(IA(2) * exact::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)) +
-                                         IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)))
-                               .sup();
+  // The points that can matter for delta-protection are those projected within 2r + delta of p,
+  // r the cell's projected circumradius: a point projected farther is at distance > r + delta from
+  // the projected circumcentre (|c' - p| = r), protected. Only cells with r <= eps reach that test
+  // (the circumradius condition comes first), so 2 r_max + delta bounds every cell's reach, with
+  // r_max the largest r over the star (from its vertices alone; eps where an interval determinant
+  // leaves a cell's centre open), capped at eps.
+  double r_max = exact::sqrt(IA(sp.eps2_enclosure.lo, sp.eps2_enclosure.hi)).sup();
+  {
+    std::vector<int> vs;
+    for (const auto& s : star)
+      for (int v : s)
+        if (v != p) vs.push_back(v);
+    std::sort(vs.begin(), vs.end());
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+    std::vector<IA> bv((vs.size() + 1) * m, IA(0)), tv(vs.size() + 1, IA(0));  // row 0: p itself
+    for (std::size_t k = 0; k < vs.size(); ++k) {
+      IA* row = bv.data() + (k + 1) * m;
+      for (int i = 0; i < N; ++i) {
+        const IA d = IA(P.point(vs[k])[i]) - IA(P.point(p)[i]);
+        for (int a = 0; a < m; ++a) row[a] += U[i * m + a] * d;
+      }
+      for (int a = 0; a < m; ++a)
+        for (int l = 0; l < m; ++l) tv[k + 1] += row[a] * Gi[a * m + l] * row[l];
+    }
+    double r_cells = 0;
+    for (const auto& s : star) {
+      List c{};
+      for (int i = 0, k = 1; i <= m && k <= m; ++i)
+        if (s[i] != p) c[k++] = 1 + static_cast<int>(std::lower_bound(vs.begin(), vs.end(), s[i]) - vs.begin());
+      std::array<IA, kMaxM> y;
+      IA r2(0);
+      if (projected_circumcentre(c, bv, tv, G, m, y, r2) != 1 || !(r2.sup() <= DBL_MAX)) {
+        r_cells = INFINITY;
+        break;
+      }
+      r_cells = std::max(r_cells, exact::sqrt(IA(std::max(0.0, r2.sup()))).sup());
+    }
+    r_max = std::min(r_max, r_cells);
+  }
+  const double reach_all =
+      r_max <= DBL_MAX ? exact::square(IA(2) * IA(r_max) + IA(sp.delta_enclosure.lo, sp.delta_enclosure.hi)).sup() : INFINITY;
   // W: every grid point of the ball. Its points that FarFilter proves projected beyond reach_all
   // are left out of L (they are protected for every cell, so testing them could only confirm it);
   // the star's vertices are always in. The rest are projected in interval arithmetic as before.

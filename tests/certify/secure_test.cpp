@@ -96,6 +96,33 @@ TEST(SecureSimplices, APointFarAlongTheNormalButProjectedInsideIsTested) {
   EXPECT_EQ(analyse_secure(S, 0, cells, sp, ctx).secure, 4);
 }
 
+TEST(SecureSimplices, TheLargestCellSetsHowFarPointsAreTested) {
+  // Check 7 tests only the points projected within 2 r_max + delta of p, r_max the largest
+  // projected circumradius of the star. At p = (0, 0, 1): a small cell {p, q1, q2} (r ~ 0.07)
+  // and a large one {p, q3, q4} (r ~ 0.21, centre ~ (-0.15, -0.15)); d = (-0.2, -0.2, .) projects
+  // at ~0.28 from p, beyond 2 r + delta of the small cell but inside the large cell's circle: the
+  // large cell is not delta-protected because of d, the small one is secure.
+  io::PointSet P;
+  P.dimension = 3;
+  auto on_sphere = [&](double x, double y) { P.push_back(std::vector<double>{x, y, std::sqrt(1 - x * x - y * y)}); };
+  P.push_back(std::vector<double>{0, 0, 1});
+  on_sphere(0.1, 0), on_sphere(0, 0.1), on_sphere(-0.3, 0), on_sphere(0, -0.3), on_sphere(-0.2, -0.2);
+  io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
+  exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
+  detail::PointGrid grid(P, 2);
+  StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
+  SecureParams sp{mpq_class(1), mpq_class(1, 1000), mpq_class(1, 100), exact::to_rational(0.1), {}, {}, {}, {}};
+  sp.prepare();
+  for (const std::vector<Simplex>& cells : {std::vector<Simplex>{{0, 1, 2}, {0, 3, 4}}, std::vector<Simplex>{{0, 3, 4}, {0, 1, 2}}}) {
+    exact::FilterContext ctx;
+    SecureReport R = analyse_secure(S, 0, cells, sp, ctx);
+    EXPECT_EQ(R.secure, 1);
+    ASSERT_EQ(R.insecure, 1);
+    EXPECT_EQ(R.failures[0].first, (Simplex{0, 3, 4}));
+    EXPECT_EQ(R.failures[0].second, "not delta-protected (point 5)");
+  }
+}
+
 // A Fibonacci sample of the unit sphere (its poles are a little irregular).
 io::PointSet fibonacci_points(int n) {
   io::PointSet P;
