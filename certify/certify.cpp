@@ -1231,7 +1231,7 @@ Certificate run_certify(const CertifyOptions& o) {
   std::vector<Simplex> fitting;  // a copy only when some simplex is too large
   if (!all_fit) std::copy_if(K.simplices.begin(), K.simplices.end(), std::back_inserter(fitting), fits);
   phase("check 5 thickness");
-  const FaceLattice lattice = face_lattice(all_fit ? K.simplices : fitting);
+  const FaceLattice lattice = face_lattice(all_fit ? K.simplices : fitting, threads);
   ThicknessResult thick = check_thickness(P, lattice, m, claims.gamma0 ? &*claims.gamma0 : nullptr, threads, C.filter,
                                          o.force_exact);
   watch.record(C, "thickness");

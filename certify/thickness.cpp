@@ -72,9 +72,23 @@ double approx_thickness2(const io::PointSet& P, const int* v, int j) {
   return longest > 0 ? std::max(0.0, best) / (double(j) * j * longest) : 0.0;
 }
 
-std::vector<const double*> vertex_pointers(const io::PointSet& P, const int* v, int j) {
-  std::vector<const double*> out;
-  for (int i = 0; i <= j; ++i) out.push_back(P.point(v[i]).data());
+// The coordinates of a j-face's vertices: in place for j <= kMaxJ (no allocation per face), in a
+// vector above (faces the exact predicates refuse with their own message).
+struct VertexPointers {
+  std::array<const double*, kMaxJ + 1> p{};
+  std::vector<const double*> big;
+  int n = 0;
+  operator std::span<const double* const>() const {
+    return n <= kMaxJ + 1 ? std::span<const double* const>(p.data(), n) : std::span<const double* const>(big);
+  }
+};
+VertexPointers vertex_pointers(const io::PointSet& P, const int* v, int j) {
+  VertexPointers out;
+  out.n = j + 1;
+  for (int i = 0; i <= j; ++i) {
+    if (j <= kMaxJ) out.p[i] = P.point(v[i]).data();
+    else out.big.push_back(P.point(v[i]).data());
+  }
   return out;
 }
 

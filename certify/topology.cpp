@@ -97,7 +97,7 @@ long FaceLattice::find(int k, const int* face) const {
   return -1;
 }
 
-FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal) {
+FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal, int threads) {
   FaceLattice L;
   for (const auto& s : maximal) {
     if (s.size() > static_cast<std::size_t>(kMaxLatticeVertices))
@@ -115,7 +115,11 @@ FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal) {
         if (mask >> i & 1) L.flat[k].push_back(s[i]);
     }
   }
-  for (int k = 0; k <= L.dimension; ++k) L.flat[k] = sorted_unique_records(L.flat[k], k + 1);
+  // One sort per dimension, the largest first, on the threads (the result does not depend on them).
+  std::vector<int> dims(std::max(0, L.dimension + 1));
+  std::iota(dims.begin(), dims.end(), 0);
+  std::stable_sort(dims.begin(), dims.end(), [&](int a, int b) { return L.flat[a].size() > L.flat[b].size(); });
+  detail::parallel_for(dims.size(), threads, [&](std::size_t i, int) { L.flat[dims[i]] = sorted_unique_records(L.flat[dims[i]], dims[i] + 1); });
   L.first.assign(std::max(0, L.dimension + 1), {});
   for (int k = 0; k <= L.dimension; ++k) {
     const std::size_t n = L.count(k);
@@ -246,6 +250,7 @@ static std::vector<long> boundary_ranks(const FaceLattice& L, const FaceIndex& I
     std::vector<long> pivot_col(rows, -1);
     std::vector<Column> reduced(cols);
     std::vector<char> cleared_here(rows, 0);
+    Column sum;  // scratch of the column additions (its buffer is swapped with the column's)
     for (long j = 0; j < cols; ++j) {
       if (!cleared_above.empty() && cleared_above[j]) continue;
       Column col;
@@ -258,7 +263,7 @@ static std::vector<long> boundary_ranks(const FaceLattice& L, const FaceIndex& I
       while (!col.empty() && pivot_col[col.back().first] >= 0) {
         const Column& other = reduced[pivot_col[col.back().first]];
         int factor = col.back().second * inverse_mod(other.back().second, p) % p;  // col -= factor * other
-        Column sum;
+        sum.clear();
         sum.reserve(col.size() + other.size());
         std::size_t a = 0, b = 0;
         while (a < col.size() || b < other.size()) {
@@ -589,7 +594,7 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
   }
   if (!too_big) {
     std::optional<FaceLattice> own;
-    if (!lattice) own = face_lattice(K.simplices);
+    if (!lattice) own = face_lattice(K.simplices, threads);
     const FaceLattice& L = lattice ? *lattice : *own;
     for (int k = 0; k <= L.dimension; ++k) {
       R.f.push_back(static_cast<long>(L.count(k)));

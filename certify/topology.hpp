@@ -29,7 +29,7 @@ struct FaceLattice {
 // throws std::invalid_argument beyond. Callers drop larger simplices first (certify.cpp refutes
 // them as simplices of the wrong dimension; analyse_topology skips the lattice for them).
 inline constexpr int kMaxLatticeVertices = 16;
-FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal_simplices);
+FaceLattice face_lattice(const std::vector<std::vector<int>>& maximal_simplices, int threads = 1);
 
 // Ranks of the boundary maps over Z/p (p prime, small): rank[k] = rank of d_k: C_k -> C_{k-1}
 // (rank[0] = 0). Column reduction with clearing, top dimension first.
