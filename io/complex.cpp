@@ -42,16 +42,22 @@ std::vector<int> parse_simplex(const std::vector<std::string_view>& tokens, std:
 }
 
 void check_unique(const std::vector<std::vector<int>>& simplices, const std::vector<long>& line_of, const std::string& file) {
-  std::map<std::vector<int>, long> seen;
-  for (std::size_t i = 0; i < simplices.size(); ++i) {
-    auto key = simplices[i];
-    std::sort(key.begin(), key.end());
-    auto [it, inserted] = seen.emplace(key, line_of[i]);
-    if (!inserted)
-      throw InputError(file, line_of[i],
-                       line_of[i] > 0 ? "simplex listed twice (first on line " + std::to_string(it->second) + ")"
-                                      : "simplex " + std::to_string(i) + " listed twice (the same vertices as an earlier one)");
+  // Sorted vertex lists ordered by (vertices, position): a repeat follows its first occurrence.
+  // The one reported is the earliest simplex in the file that repeats an earlier one.
+  std::vector<std::vector<int>> keys(simplices);
+  for (auto& k : keys) std::sort(k.begin(), k.end());
+  std::vector<std::size_t> order(keys.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
+  std::size_t repeat = keys.size(), first = 0;
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    if (keys[order[k]] != keys[order[k - 1]] || (k >= 2 && keys[order[k - 2]] == keys[order[k]])) continue;
+    if (order[k] < repeat) repeat = order[k], first = order[k - 1];  // the second occurrence of its group
   }
+  if (repeat == keys.size()) return;
+  throw InputError(file, line_of[repeat],
+                   line_of[repeat] > 0 ? "simplex listed twice (first on line " + std::to_string(line_of[first]) + ")"
+                                       : "simplex " + std::to_string(repeat) + " listed twice (the same vertices as an earlier one)");
 }
 
 bool all_digits(std::string_view t) {

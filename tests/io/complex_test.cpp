@@ -73,6 +73,27 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"complex-off-quad.off", 7, "face has 4 vertices"},
                       BadCase{"complex-66-vertices.txt", 4, "a simplex with 66 vertices; at most 65"}));
 
+// With several repeated simplices, the one reported is the first line that repeats an earlier one,
+// with the line it repeats (the reader sorts the simplices; the answer is the file's order).
+TEST(Complex, TheFirstRepeatInTheFileIsReported) {
+  auto error_of = [](const std::string& text) {
+    try {
+      parse_complex(text, "mem");
+    } catch (const InputError& e) {
+      return std::to_string(e.line()) + ": " + e.what();
+    }
+    return std::string("accepted");
+  };
+  const std::string head = "delcert-complex v1\n5 4\n";  // simplices on lines 3, 4, 5, 6
+  EXPECT_NE(error_of(head + "0 1 2\n1 2 3\n3 2 1\n2 1 0\n").find("5: "), std::string::npos);
+  EXPECT_NE(error_of(head + "0 1 2\n1 2 3\n3 2 1\n2 1 0\n").find("first on line 4"), std::string::npos);
+  EXPECT_NE(error_of(head + "0 1 2\n1 2 3\n2 1 0\n3 2 1\n").find("first on line 3"), std::string::npos);
+  EXPECT_NE(error_of(head + "0 1 2\n1 2 3\n2 1 0\n3 2 1\n").find("5: "), std::string::npos);
+  EXPECT_NE(error_of(head + "0 1 2\n0 2 1\n1 0 2\n2 3 4\n").find("4: "), std::string::npos);
+  EXPECT_NE(error_of(head + "0 1 2\n0 2 1\n1 0 2\n2 3 4\n").find("first on line 3"), std::string::npos);
+  EXPECT_EQ(error_of(head + "0 1 2\n1 2 3\n2 3 4\n0 1 3\n"), "accepted");
+}
+
 // The largest simplex the reader accepts: 65 vertices (ambient dimension 64 + 1).
 TEST(Complex, SimplexSizeLimit) {
   std::string text = "delcert-complex v1\n65 1\n";
