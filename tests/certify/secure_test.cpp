@@ -14,12 +14,8 @@
 namespace delcert::certify::test {
 namespace {
 
-TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBackExactly) {
-  // At p = (0, 0, 1) on the unit sphere the exact tangent basis is U = (2 e_x, 2 e_y), so the
-  // projected squared distance from p to q1 = (0.1, 0, 1) is exactly 0.1^2 (the double 0.1),
-  // a rational that the interval evaluation encloses but cannot compare exactly with
-  // shortest^2 = 0.1^2: the cell {p, q1, q2} needs the exact fallback, whose answer is that the
-  // edge is not shorter than mu0 eps (equality).
+// p = (0, 0, 1) (index 0) and four points at 0.1 from it in the plane z = 1 (1: +x, 2: +y, 3: -x, 4: -y).
+io::PointSet north_pole_and_four() {
   io::PointSet P;
   P.dimension = 3;
   P.push_back(std::vector<double>{0, 0, 1});
@@ -27,10 +23,29 @@ TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBack
   P.push_back(std::vector<double>{0, 0.1, 1});
   P.push_back(std::vector<double>{-0.1, 0, 1});
   P.push_back(std::vector<double>{0, -0.1, 1});
+  return P;
+}
+
+// The star settings of check 7 on the unit sphere for the points P (kept here: the grid and the
+// settings point to them).
+struct OnSphere {
+  io::PointSet P;
   io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
-  exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
-  detail::PointGrid grid(P, 2);
-  StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
+  exact::ImplicitSystem system{spec.equations, spec.ambient_dimension};
+  detail::PointGrid grid;
+  StarSettings S;
+  explicit OnSphere(io::PointSet points)
+      : P(std::move(points)), grid(P, 2), S{&P, &system, &grid, 2, std::nullopt, std::nullopt} {}
+};
+
+TEST(SecureSimplices, EnclosuresFromTheStarAnalysisGiveTheSameAnswersAndFallBackExactly) {
+  // At p = (0, 0, 1) on the unit sphere the exact tangent basis is U = (2 e_x, 2 e_y), so the
+  // projected squared distance from p to q1 = (0.1, 0, 1) is exactly 0.1^2 (the double 0.1),
+  // a rational that the interval evaluation encloses but cannot compare exactly with
+  // shortest^2 = 0.1^2: the cell {p, q1, q2} needs the exact fallback, whose answer is that the
+  // edge is not shorter than mu0 eps (equality).
+  OnSphere w(north_pole_and_four());
+  const StarSettings& S = w.S;
   exact::FilterContext ctx;
   StarReport star = analyse_star(S, 0, nullptr, ctx);
   ASSERT_EQ(star.basis_enclosure.size(), 6u);
@@ -61,19 +76,11 @@ TEST(SecureSimplices, APointFarAlongTheNormalButProjectedInsideIsTested) {
   // inside a cell's circle: with eps = 1 the antipode q = (0, 0, -1) of p = (0, 0, 1) is in W
   // and projects onto p itself, at distance r from every projected circumcentre: no cell is
   // delta-protected, and q is the named point. Check 7 scans only the box of W where a point can
-  // project within 2 eps + delta; the box must reach down the normal to hold q.
-  io::PointSet P;
-  P.dimension = 3;
-  P.push_back(std::vector<double>{0, 0, 1});
-  P.push_back(std::vector<double>{0.1, 0, 1});
-  P.push_back(std::vector<double>{0, 0.1, 1});
-  P.push_back(std::vector<double>{-0.1, 0, 1});
-  P.push_back(std::vector<double>{0, -0.1, 1});
-  P.push_back(std::vector<double>{0, 0, -1});
-  io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
-  exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
-  detail::PointGrid grid(P, 2);
-  StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
+  // project within 2 r_max + delta; the box must reach down the normal to hold q.
+  io::PointSet six = north_pole_and_four();
+  six.push_back(std::vector<double>{0, 0, -1});
+  OnSphere w(six);
+  const StarSettings& S = w.S;
   exact::FilterContext ctx;
   StarReport star = analyse_star(S, 0, nullptr, ctx);
   std::vector<Simplex> cells = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 1, 4}};
@@ -90,10 +97,8 @@ TEST(SecureSimplices, APointFarAlongTheNormalButProjectedInsideIsTested) {
     }
   }
   // Without the antipode the same cells are secure (the test above).
-  P.coordinates.resize(5 * 3);
-  detail::PointGrid grid5(P, 2);
-  S.grid = &grid5;
-  EXPECT_EQ(analyse_secure(S, 0, cells, sp, ctx).secure, 4);
+  OnSphere five(north_pole_and_four());
+  EXPECT_EQ(analyse_secure(five.S, 0, cells, sp, ctx).secure, 4);
 }
 
 TEST(SecureSimplices, TheLargestCellSetsHowFarPointsAreTested) {
@@ -107,15 +112,12 @@ TEST(SecureSimplices, TheLargestCellSetsHowFarPointsAreTested) {
   auto on_sphere = [&](double x, double y) { P.push_back(std::vector<double>{x, y, std::sqrt(1 - x * x - y * y)}); };
   P.push_back(std::vector<double>{0, 0, 1});
   on_sphere(0.1, 0), on_sphere(0, 0.1), on_sphere(-0.3, 0), on_sphere(0, -0.3), on_sphere(-0.2, -0.2);
-  io::ManifoldSpec spec = io::read_spec("builtin:sphere-2");
-  exact::ImplicitSystem system(spec.equations, spec.ambient_dimension);
-  detail::PointGrid grid(P, 2);
-  StarSettings S{&P, &system, &grid, 2, std::nullopt, std::nullopt};
+  OnSphere w(P);
   SecureParams sp{mpq_class(1), mpq_class(1, 1000), mpq_class(1, 100), exact::to_rational(0.1), {}, {}, {}, {}};
   sp.prepare();
   for (const std::vector<Simplex>& cells : {std::vector<Simplex>{{0, 1, 2}, {0, 3, 4}}, std::vector<Simplex>{{0, 3, 4}, {0, 1, 2}}}) {
     exact::FilterContext ctx;
-    SecureReport R = analyse_secure(S, 0, cells, sp, ctx);
+    SecureReport R = analyse_secure(w.S, 0, cells, sp, ctx);
     EXPECT_EQ(R.secure, 1);
     ASSERT_EQ(R.insecure, 1);
     EXPECT_EQ(R.failures[0].first, (Simplex{0, 3, 4}));
