@@ -233,6 +233,7 @@ void PointGrid::gather_box(std::span<const double> c, const double* half, std::v
   double cells = 1;
   for (int t = 0; t < A; ++t) {
     const double x = c[axes_[t]], r = half[t];
+    if (r < 0) return;  // an empty box (NaN goes on: every point)
     // Proof step 4: L <= c - r and U >= c + r in every rounding mode; a, b as in step 1.
     const double a = scaled_floor(std::nextafter(x - r, -INFINITY)), b = scaled_floor(std::nextafter(x + r, INFINITY));
     if (std::isnan(a) || std::isnan(b)) {  // NaN centre or radius: every point

@@ -115,6 +115,11 @@ TEST(PointGrid, EveryCellTableGivesTheBallInABox) {
       for (int i : visited)
         for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(P.point(i)[k] - c[k]), half[k] + h) << grid.table();
     }
+    // A negative half-width or radius is an empty box (not a loop without end).
+    int seen = 0;
+    grid.visit_ball(std::vector<double>{0.2, 0, 0}, 0.5, std::vector<double>{0.5, -0.1, 0.5}, [&](int, const double*) { ++seen; });
+    EXPECT_EQ(seen, 0);
+    EXPECT_TRUE(grid.candidates(std::vector<double>{0.2, 0, 0}, -1.0).empty());
   }
 }
 
