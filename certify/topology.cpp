@@ -230,34 +230,64 @@ static std::vector<long> boundary_ranks(const FaceLattice& L, const FaceIndex& I
     top = D - 1;
   }
   // rank d_1 = #vertices - #components, over any field, by a spanning forest of the 1-skeleton.
-  // Its edges can be dropped from the rows of d_2: im d_2 lies in ker d_1, and a 1-cycle that
-  // vanishes off the forest is 0 (a forest has no cycle), so projecting away the forest's
-  // coordinates is injective on im d_2 and keeps its rank (over any field). Fewer rows, less fill.
-  std::vector<char> forest_edge;
   if (D >= 1) {
     UnionFind uf(L.count(0));
-    const std::size_t E = L.count(1);
-    forest_edge.assign(E, 0);
-    for (std::size_t e = 0; e < E; ++e) {
-      long a = L.find(0, &L.flat[1][2 * e]), b = L.find(0, &L.flat[1][2 * e + 1]);
-      forest_edge[e] = uf.unite(a, b);
-      rank[1] += forest_edge[e];
-    }
+    for (std::size_t e = 0; e < L.count(1); ++e)
+      rank[1] += uf.unite(L.find(0, &L.flat[1][2 * e]), L.find(0, &L.flat[1][2 * e + 1]));
   }
   using Column = std::vector<std::pair<long, int>>;  // (row, coefficient mod p), rows increasing
   for (int k = top; k >= 2; --k) {
     const long rows = static_cast<long>(L.count(k - 1)), cols = static_cast<long>(L.count(k));
+    auto row_of = [&](long j, int i) { return I.of[k][j * (k + 1) + i]; };
+    // Peeling first (elementary collapses): a row with one non-zero entry left, in column j, adds
+    // 1 to the rank, and the rest of the matrix keeps its rank without that row and column j (row
+    // operations with the row clear the rest of column j and touch no other entry). Repeated, this
+    // removes all of d_k on the spheres we met; the rest, a core with its entries unchanged, is
+    // reduced below. Cleared for d_(k-1): the peeled rows and the core's pivots. Each is a row of
+    // a cycle (column j; a reduced column, a combination of whole columns of the core) with a
+    // non-zero entry there, and these cycles are triangular on the cleared rows: column j holds
+    // no row peeled before it (such a row had its one live column elsewhere while j lived), a
+    // core column no peeled row at all, a reduced column no pivot above its own. So d_(k-1)
+    // keeps its rank without the columns of the cleared rows.
+    std::vector<int> row_n(rows, 0);  // the live columns of each row
+    std::vector<char> col_dead(cols, 0), row_dead(rows, 0), cleared_here(rows, 0);
+    for (long j = 0; j < cols; ++j) {
+      col_dead[j] = !cleared_above.empty() && cleared_above[j];
+      for (int i = 0; i <= k && !col_dead[j]; ++i) ++row_n[row_of(j, i)];
+    }
+    std::vector<long> row_start(rows + 1, 0);
+    for (long r = 0; r < rows; ++r) row_start[r + 1] = row_start[r] + row_n[r];
+    std::vector<long> row_cols(row_start[rows]), fill(row_start.begin(), row_start.end() - 1);
+    for (long j = 0; j < cols; ++j)
+      for (int i = 0; i <= k && !col_dead[j]; ++i) row_cols[fill[row_of(j, i)]++] = j;
+    std::vector<long> stack;
+    for (long r = rows - 1; r >= 0; --r)
+      if (row_n[r] == 1) stack.push_back(r);
+    while (!stack.empty()) {
+      const long r = stack.back();
+      stack.pop_back();
+      if (row_dead[r] || row_n[r] != 1) continue;
+      long j = -1;
+      for (long t = row_start[r]; t < row_start[r + 1]; ++t)
+        if (!col_dead[row_cols[t]]) j = row_cols[t];
+      ++rank[k];
+      cleared_here[r] = 1;
+      col_dead[j] = row_dead[r] = 1;
+      for (int i = 0; i <= k; ++i) {
+        const long q = row_of(j, i);
+        if (q != r && !row_dead[q] && --row_n[q] == 1) stack.push_back(q);
+      }
+    }
+    // The core: column reduction (columns in order, the pivot of a column its largest row).
     std::vector<long> pivot_col(rows, -1);
     std::vector<Column> reduced(cols);
-    std::vector<char> cleared_here(rows, 0);
     Column sum;  // scratch of the column additions (its buffer is swapped with the column's)
     for (long j = 0; j < cols; ++j) {
-      if (!cleared_above.empty() && cleared_above[j]) continue;
+      if (col_dead[j]) continue;
       Column col;
       for (int i = 0; i <= k; ++i) {  // the face without vertex i, coefficient (-1)^i
-        const long row = I.of[k][j * (k + 1) + i];
-        if (k == 2 && forest_edge[row]) continue;
-        col.emplace_back(row, (i % 2 == 0) ? 1 : p - 1);
+        const long row = row_of(j, i);
+        if (!row_dead[row]) col.emplace_back(row, (i % 2 == 0) ? 1 : p - 1);
       }
       std::sort(col.begin(), col.end());
       while (!col.empty() && pivot_col[col.back().first] >= 0) {

@@ -188,8 +188,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // it certifies from. Check 7's box of W where a point can matter and the stars' cutoff of each
   // cell's power tests at rho >= 2.5R, each with its proof (~60): 10360; check 7's reach cut to
   // 2 r_max + delta by the star's largest projected circumradius (the projected circumcentre
-  // shared with secure_cell, ~35 net), a negative half-width as an empty box: 10428, so 10450.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 10450) << "certify/ should stay small enough to read whole";
+  // shared with secure_cell, ~35 net), a negative half-width as an empty box: 10428; the Betti
+  // numbers' peeling (elementary collapses before the reduction, with the clearing's proof, ~30
+  // net): 10458, so 10500.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 10500) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
