@@ -57,6 +57,18 @@ TEST(Sanity, SquaredSphereExitsWithStatus2AndNoCertificate) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// On the squared sphere, (1, 0, 0) lies on M with J_F(p) = 0 exactly: the Krawczyk test fails
+// (so it cannot vouch for the rank at p) and the exact rank refuses the point by name.
+TEST(Sanity, ExactlyRankDeficientJacobianAtThePointIsRefused) {
+  const io::PointSet P = make_points(3, {{1, 0, 0}, {0, 1, 0}});
+  try {
+    sanity(fixture("certify/spec-squared-sphere.json"), P);
+    ADD_FAILURE() << "accepted a point where J_F vanishes";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the Jacobian of F is rank-deficient at point 0"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Sanity, OctahedronVerticesAreExactlyOnTheSphere) {
   io::PointSet P = make_points(3, {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
   CheckEntry e = sanity("builtin:sphere-2", P);
