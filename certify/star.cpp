@@ -511,14 +511,25 @@ bool check_link(const StarSettings& S, const Local& L, const std::vector<List>& 
   return false;
 }
 
+// The claims a cell at p is tested against, prepared once per star (exact value and enclosure).
+struct CellClaims {
+  std::optional<exact::RationalConstant> prot, eps2;  // delta-check^2, eps(p)^2
+};
+CellClaims cell_claims(const StarSettings& S, int p) {
+  CellClaims C;
+  if (S.power_protection) C.prot.emplace(*S.power_protection);
+  if (S.eps) C.eps2.emplace(mpq_class(*S.eps * *S.eps));
+  else if (S.eps_per_point) C.eps2.emplace(mpq_class((*S.eps_per_point)[p] * (*S.eps_per_point)[p]));
+  return C;
+}
+
 // Tests one cell at p against every point of L: emptiness, ties, margin, claims. Raises
 // need_radius to the search radius this cell requires.
-CellReport test_list(const StarSettings& S, const Local& L, const List& c, double& need_radius, exact::FilterContext& ctx) {
+CellReport test_list(const StarSettings& S, const Local& L, const List& c, double& need_radius, exact::FilterContext& ctx,
+                     const CellClaims& claims) {
   const int m = L.m;
-  std::optional<exact::RationalConstant> prot, eps2;
-  if (S.power_protection) prot.emplace(*S.power_protection);
-  if (S.eps) eps2.emplace(mpq_class(*S.eps * *S.eps));
-  else if (S.eps_per_point) eps2.emplace(mpq_class((*S.eps_per_point)[L.global[0]] * (*S.eps_per_point)[L.global[0]]));
+  const auto& prot = claims.prot;
+  const auto& eps2 = claims.eps2;
   CellReport R;
   R.simplex = to_global(L, c);
   exact::TangentCell tc = L.chart().cell(std::span<const int>(c.data(), m + 1), ctx);
@@ -593,8 +604,9 @@ Verification verify(const StarSettings& S, const Local& L, const std::vector<Lis
   Verification V;
   bool any_degenerate = false;
   V.cells.reserve(cells.size());  // kept as the star (1M points: 256 bytes a point less than by doubling)
+  const CellClaims claims = cell_claims(S, L.global[0]);
   for (const List& c : cells) {
-    V.cells.push_back(test_list(S, L, c, V.need_radius, ctx));
+    V.cells.push_back(test_list(S, L, c, V.need_radius, ctx, claims));
     any_degenerate = any_degenerate || V.cells.back().degenerate;
   }
   const bool proven = std::all_of(V.cells.begin(), V.cells.end(), [](const CellReport& c) { return c.empty(); });
@@ -737,7 +749,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
     for (int i = 0, k = 1; i <= m; ++i)
       if (s[i] != p) c[k++] = L.local_of(s[i]);
     double need = 0;
-    CellReport R = test_list(S, L, sorted_list(c, m), need, ctx);
+    CellReport R = test_list(S, L, sorted_list(c, m), need, ctx, cell_claims(S, p));
     if (need <= r || L.all) return R;
     r = std::max(need * kNeededRadiusMargin, r * kMinRadiusGrowth);
   }

@@ -164,7 +164,16 @@ int put_origin_first(std::span<const int> given, int* order) {
 // TangentChart
 // ---------------------------------------------------------------------------------------------
 
+void TangentChart::Impl::compute_row(int i) const {
+  detail::EnsureUpward guard;
+  detail::dispatch<1, detail::kMaxIntrinsicDim>(m, [&](auto M) {
+    interval_row<M()>(*space_impl, coords.data() + static_cast<std::size_t>(i) * N, rows.data() + static_cast<std::size_t>(i) * (m + 1));
+  });
+  have_row[i] = 1;
+}
+
 const EX* TangentChart::Impl::exact_row(int i) const {
+  if (exact_rows.empty()) exact_rows.resize(static_cast<std::size_t>(count) * (m + 1));  // zeros; row 0 (p) is exactly zero
   EX* row = exact_rows.data() + static_cast<std::size_t>(i) * (m + 1);
   if (!have_exact[i]) {
     detail::dispatch<1, detail::kMaxIntrinsicDim>(
@@ -197,14 +206,11 @@ TangentChart::TangentChart(const TangentSpace& space, std::span<const double* co
     check_finite(points[i], c.N);
     std::copy(points[i], points[i] + N, c.coords.begin() + (i + 1) * N);
   }
-  c.rows.assign(c.count * L, IA(0));
-  c.exact_rows.resize(c.count * L);  // zeros; row 0 (p) is exactly zero
+  c.rows.assign(c.count * L, IA(0));  // row 0 (p) is exactly zero
+  c.have_row.assign(c.count, 0);
+  c.have_row[0] = 1;
   c.have_exact.assign(c.count, 0);
   c.have_exact[0] = 1;
-  detail::EnsureUpward guard;
-  detail::dispatch<1, detail::kMaxIntrinsicDim>(c.m, [&](auto M) {
-    for (int i = 1; i < c.count; ++i) interval_row<M()>(*c.space_impl, c.coords.data() + i * N, c.rows.data() + i * L);
-  });
 }
 
 namespace {

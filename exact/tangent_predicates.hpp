@@ -34,8 +34,8 @@
 // costs m + 1 interval multiply-adds. The free functions at the end take raw points and
 // recompute the chart rows at every call (convenient, slower).
 //
-// Threads. TangentChart caches exact rows lazily: use a chart (and its cells) from one thread
-// at a time. TangentSpace is immutable and may be shared.
+// Threads. TangentChart computes its rows (interval and exact) lazily: use a chart (and its
+// cells) from one thread at a time. TangentSpace is immutable and may be shared.
 #pragma once
 
 #include <gmpxx.h>

@@ -47,12 +47,19 @@ struct TangentChart::Impl {
   TangentSpace space;
   int N = 0, m = 0, count = 0;
   std::vector<double> coords;               // count x N, row 0 = p
-  std::vector<detail::IA> rows;             // count x (m + 1)
-  mutable std::vector<detail::EX> exact_rows;  // count x (m + 1), filled lazily
+  // Rows are computed on first use: a star's cells read those of their vertices and of the few
+  // points their power filters leave open, not all of the chart's.
+  mutable std::vector<detail::IA> rows;        // count x (m + 1)
+  mutable std::vector<unsigned char> have_row;
+  mutable std::vector<detail::EX> exact_rows;  // count x (m + 1), allocated on first use
   mutable std::vector<unsigned char> have_exact;
 
   explicit Impl(const TangentSpace& s) : space(s) {}
-  const detail::IA* row(int i) const { return rows.data() + static_cast<std::size_t>(i) * (m + 1); }
+  const detail::IA* row(int i) const {
+    if (!have_row[i]) compute_row(i);
+    return rows.data() + static_cast<std::size_t>(i) * (m + 1);
+  }
+  void compute_row(int i) const;
   const detail::EX* exact_row(int i) const;
   void check_index(int i) const;
 };
