@@ -577,8 +577,8 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
   std::vector<std::vector<long>> incident(K.num_vertices);
   for (std::size_t j = 0; j < K.simplices.size(); ++j)
     for (int v : K.simplices[j]) incident[v].push_back(static_cast<long>(j));
-  // The m = 3 fast path for every vertex in parallel (its answer depends only on the vertex); the
-  // vertices it does not accept then go, in increasing order, through is_sphere.
+  // The m = 3 fast path (m = 2: is_sphere) for every vertex in parallel (its answer depends only on
+  // the vertex); the vertices it does not accept then go, in increasing order, through is_sphere.
   std::vector<char> settled(K.num_vertices, 0);
   if (m == 3) {
     std::vector<LinkScratch> scratch(std::max(1, threads));
@@ -597,6 +597,16 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
         tris.push_back(t);
       }
       settled[v] = !incident[v].empty() && link_is_2_sphere(tris, scratch[w]);  // is_sphere would say yes
+    });
+  } else if (m == 2) {  // is_sphere itself (a cycle test) in parallel; its answer depends only on the vertex
+    detail::parallel_for(K.num_vertices, threads, [&](std::size_t v, int) {
+      std::vector<std::vector<int>> link;
+      for (long j : incident[v]) {
+        link.emplace_back();
+        for (int x : K.simplices[j])
+          if (x != static_cast<int>(v)) link.back().push_back(x);
+      }
+      settled[v] = !link.empty() && is_sphere(link, 1, nullptr) == Tri::yes;
     });
   }
   for (std::size_t v = 0; v < K.num_vertices; ++v) {

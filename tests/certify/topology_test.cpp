@@ -193,6 +193,21 @@ TEST(Topology, ReportOnComplexes) {
 
   io::Complex uncovered{7, kOctahedron};
   EXPECT_EQ(analyse_topology(uncovered, 2).uncovered_vertices, 1);
+
+  // Two octahedra glued at a vertex (5 and 11 are one): its link is two cycles. The links are
+  // tested on the threads; the report names the same vertex and reason for any thread count.
+  io::Complex pinched{11, kOctahedron};
+  for (auto s : kOctahedron) {
+    for (int& v : s) v = v == 5 ? 5 : v < 5 ? v + 6 : 10;
+    pinched.simplices.push_back(s);
+  }
+  for (int threads : {1, 2, 3}) {
+    R = analyse_topology(pinched, 2, nullptr, threads);
+    EXPECT_EQ(R.bad_links, 1);
+    EXPECT_EQ(R.bad_link_example, 5);
+    EXPECT_EQ(R.boundary_ridges + R.singular_ridges, 0);
+    EXPECT_EQ(R.betti_z2, (std::vector<long>{1, 0, 2}));
+  }
 }
 
 // m = 3: vertex links are 2-spheres (analyse_topology's fast path must agree with is_sphere).
