@@ -141,22 +141,25 @@ struct FaceIndex {
   std::vector<std::vector<long>> of;
 };
 
-FaceIndex face_index(const FaceLattice& L) {
+FaceIndex face_index(const FaceLattice& L, int threads = 1) {
   FaceIndex I;
   const int D = L.dimension;
   I.of.resize(std::max(D + 1, 0));
+  constexpr long kBlock = 4096;  // faces per task
   for (int k = 2; k <= D; ++k) {
     const long n = static_cast<long>(L.count(k));
     I.of[k].resize(static_cast<std::size_t>(n) * (k + 1));
-    std::vector<int> face(k);
-    for (long j = 0; j < n; ++j) {
-      const int* s = &L.flat[k][j * (k + 1)];
-      for (int i = 0; i <= k; ++i) {
-        for (int t = 0, u = 0; t <= k; ++t)
-          if (t != i) face[u++] = s[t];
-        I.of[k][j * (k + 1) + i] = L.find(k - 1, face.data());
+    detail::parallel_for((n + kBlock - 1) / kBlock, threads, [&](std::size_t b, int) {
+      std::array<int, kMaxLatticeVertices> face{};
+      for (long j = static_cast<long>(b) * kBlock; j < std::min(n, static_cast<long>(b + 1) * kBlock); ++j) {
+        const int* s = &L.flat[k][j * (k + 1)];
+        for (int i = 0; i <= k; ++i) {
+          for (int t = 0, u = 0; t <= k; ++t)
+            if (t != i) face[u++] = s[t];
+          I.of[k][j * (k + 1) + i] = L.find(k - 1, face.data());
+        }
       }
-    }
+    });
   }
   return I;
 }
@@ -640,7 +643,7 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
       R.f.push_back(static_cast<long>(L.count(k)));
       R.euler += (k % 2 ? -1 : 1) * R.f.back();
     }
-    const FaceIndex I = face_index(L);  // shared by both fields
+    const FaceIndex I = face_index(L, threads);  // shared by both fields
     std::vector<long> ranks[2];
     detail::parallel_for(2, threads, [&](std::size_t f, int) { ranks[f] = boundary_ranks(L, I, f ? 3 : 2); });
     R.betti_z2 = betti_from_ranks(L, ranks[0]);
