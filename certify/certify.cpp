@@ -1181,7 +1181,7 @@ Certificate run_certify(const CertifyOptions& o) {
   if (D.world->size() > 1)
     for (int r = 0; r < D.world->size(); ++r) D.blocks.push_back(owned_points(grid, r, D.world->size()));
   phase("check 2 sparsity");
-  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity);
+  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity, threads);
   watch.record(C, "sparsity");
 
   const auto* radius_per_point = claims.star_radius_per_point_file.empty() ? nullptr : &claims.star_radius_per_point;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <optional>
 
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
@@ -166,7 +168,7 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
 }
 
 SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGrid& grid, const mpq_class* claim,
-                              exact::FilterContext& ctx) {
+                              exact::FilterContext& ctx, int threads) {
   SparsityResult R;
   CheckEntry& e = R.entry;
   const std::size_t n = points.size();
@@ -181,13 +183,27 @@ SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGri
     for (int k = 0; k < N; ++k) s += (points.point(a)[k] - points.point(b)[k]) * (points.point(a)[k] - points.point(b)[k]);
     return s;
   };
+  // Both passes run on the threads in blocks of points; each block keeps its best pair with ties
+  // to the smallest (i, j), and the blocks are merged in order, so the pair does not depend on the
+  // thread count (nor on the grid's visiting order).
+  constexpr std::size_t kBlock = 2048;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   // 1. An approximate closest pair (any pair gives a valid upper bound).
   double best = INFINITY;
   std::size_t ba = 0, bb = 1;
   for (double r = grid.spacing(); !(best < INFINITY); r *= 2) {
-    for (std::size_t i = 0; i < n; ++i)
-      for (int j : grid.ball(points.point(i), r))
-        if (static_cast<std::size_t>(j) > i && d2(i, j) < best) best = d2(i, j), ba = i, bb = j;
+    std::vector<std::tuple<double, std::size_t, std::size_t>> found(blocks, {INFINITY, 0, 0});
+    detail::parallel_for(blocks, threads, [&](std::size_t b, int) {
+      auto& [d, fi, fj] = found[b];
+      for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+        grid.visit_ball(points.point(i), r, [&](int j, const double*) {
+          if (static_cast<std::size_t>(j) <= i) return;
+          const double e = d2(i, j);
+          if (e < d || (e == d && std::pair<std::size_t, std::size_t>(i, j) < std::pair(fi, fj))) d = e, fi = i, fj = j;
+        });
+    });
+    for (const auto& [d, fi, fj] : found)
+      if (d < best) best = d, ba = fi, bb = fj;
     if (r > grid.diameter()) break;
   }
   // 2. Every pair at exact squared distance <= D = |a - b|^2 is found by a query of radius
@@ -197,15 +213,28 @@ SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGri
   // Every pair with |p - q|^2 <= D, decided by exact/'s filtered predicate, is a candidate;
   // their exact squared distances give the minimum.
   R.min_squared = D, R.i = static_cast<int>(ba), R.j = static_cast<int>(bb);
-  exact::RationalConstant bound(D);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int j : grid.ball(points.point(i), r)) {
-      if (static_cast<std::size_t>(j) <= i) continue;
-      if (exact::compare_squared_distance(points.point(i).data(), points.point(j).data(), bound, N, ctx) > 0) continue;
-      mpq_class q = exact::squared_distance_exact(points.point(i).data(), points.point(j).data(), N);
-      if (q < R.min_squared || (q == R.min_squared && std::pair(int(i), j) < std::pair(R.i, R.j)))
-        R.min_squared = q, R.i = static_cast<int>(i), R.j = j;
-    }
+  const exact::RationalConstant bound(D);
+  struct Best {
+    std::optional<mpq_class> q;
+    int i = 0, j = 0;
+  };
+  std::vector<Best> found(blocks);
+  std::vector<exact::FilterContext> ctxs(std::max(1, threads));
+  for (auto& c : ctxs) c.force_exact = ctx.force_exact;
+  detail::parallel_for(blocks, threads, [&](std::size_t b, int w) {
+    Best& B = found[b];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+      grid.visit_ball(points.point(i), r, [&](int j, const double*) {
+        if (static_cast<std::size_t>(j) <= i) return;
+        if (exact::compare_squared_distance(points.point(i).data(), points.point(j).data(), bound, N, ctxs[w]) > 0) return;
+        mpq_class q = exact::squared_distance_exact(points.point(i).data(), points.point(j).data(), N);
+        if (!B.q || q < *B.q || (q == *B.q && std::pair(int(i), j) < std::pair(B.i, B.j))) B.q = q, B.i = static_cast<int>(i), B.j = j;
+      });
+  });
+  for (const auto& c : ctxs) ctx.stats.merge(c.stats);
+  for (const Best& B : found)
+    if (B.q && (*B.q < R.min_squared || (*B.q == R.min_squared && std::pair(B.i, B.j) < std::pair(R.i, R.j))))
+      R.min_squared = *B.q, R.i = B.i, R.j = B.j;
   exact::Interval dist = sqrt_enclosure(R.min_squared);
   e.margin = {{"min_squared_distance", rational_json(R.min_squared)},
               {"min_distance", lower_bound_json(dist)},

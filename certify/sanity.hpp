@@ -52,6 +52,6 @@ struct SparsityResult {
   int i = -1, j = -1;
 };
 SparsityResult check_sparsity(const io::PointSet& points, const detail::PointGrid& grid, const mpq_class* claim,
-                              exact::FilterContext& ctx);
+                              exact::FilterContext& ctx, int threads = 1);
 
 }  // namespace delcert::certify

@@ -2,6 +2,8 @@
 // a small residual alone is not accepted.
 #include "certify/sanity.hpp"
 
+#include "certify/detail/grid.hpp"
+
 #include "exact/enclosure.hpp"
 #include "exact/number_types.hpp"
 #include "support.hpp"
@@ -150,6 +152,37 @@ TEST(Sanity, BuiltinSamplesPassWithTinyDistances) {
     SCOPED_TRACE(c.spec);
     CheckEntry e = sanity(c.spec, c.P, 2);
     EXPECT_LE(upper_bound(e), 1e-14);
+  }
+}
+
+
+// Check 2 on 5000 points of a jittered grid (three blocks of the parallel passes), with the
+// closest distance planted twice, at pairs (4100, 4101) and (2500, 4999), and a pair barely
+// farther at (7, 8): the exact minimum, the smallest pair among ties, and the same answer and
+// filter counts for any thread count.
+TEST(Sanity, SparsityFindsTheSmallestTiedPairOnAnyThreadCount) {
+  std::vector<std::vector<double>> pts;
+  std::uint64_t state = 99;
+  auto jitter = [&] { return double((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 40) / double(1ull << 24) * 0.2; };
+  for (int a = 0; a < 50; ++a)
+    for (int b = 0; b < 100; ++b) pts.push_back({a + jitter(), b + jitter(), jitter()});
+  const double h = 0x1p-10;
+  pts[4101] = {pts[4100][0] + h, pts[4100][1], pts[4100][2]};
+  pts[4999] = {pts[2500][0], pts[2500][1] + h, pts[2500][2]};
+  pts[7] = {0.5, 7.5, 0.5};  // every sum below is exact (the coordinates' ulps divide 2^-40)
+  pts[8] = {0.5, 7.5, 0.5 + h + 0x1p-40};
+  const io::PointSet P = make_points(3, pts);
+  const detail::PointGrid grid(P, 2);
+  std::optional<exact::FilterStats> first;
+  for (int threads : {1, 2, 3}) {
+    exact::FilterContext ctx;
+    const SparsityResult R = check_sparsity(P, grid, nullptr, ctx, threads);
+    EXPECT_EQ(R.min_squared, mpq_class(h) * mpq_class(h)) << threads;
+    EXPECT_EQ(R.i, 2500) << threads;
+    EXPECT_EQ(R.j, 4999) << threads;
+    if (!first) first = ctx.stats;
+    EXPECT_EQ(ctx.stats.total_calls(), first->total_calls()) << threads;
+    EXPECT_EQ(ctx.stats.total_failures(), first->total_failures()) << threads;
   }
 }
 
