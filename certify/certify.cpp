@@ -103,6 +103,7 @@ struct Stopwatch {
 // The inputs, each read once: the bytes parsed are the bytes hashed into the certificate.
 struct Inputs {
   std::string spec_text, points_text, complex_text, claims_text;
+  std::string points_sha256, complex_sha256;  // of points_text and complex_text
   std::string per_point_sha256;      // claims v3: SHA-256 of each per-point file (star radius, covering), "" when absent
   std::string covering_per_point_sha256;
   io::ManifoldSpec spec;
@@ -114,7 +115,7 @@ struct Inputs {
   io::Claims claims;
 };
 
-Inputs read_inputs(const CertifyOptions& o) {
+Inputs read_inputs(const CertifyOptions& o, int threads) {
   Inputs in;
   in.spec_text = io::read_spec_text(o.manifold);
   in.spec = io::parse_spec(in.spec_text, o.manifold);
@@ -123,18 +124,42 @@ Inputs read_inputs(const CertifyOptions& o) {
   if (m > exact::kMaxTangentDimension)
     throw io::InputError(o.manifold, 0, "intrinsic dimension " + std::to_string(m) + " is above the supported maximum " +
                                             std::to_string(exact::kMaxTangentDimension));
-  in.points_text = io::read_file(o.points);
-  io::PointsFile pf = io::parse_points_file(in.points_text, o.points, io::PointReadOptions{N, true});
-  in.points = std::move(pf.points);
-  in.point_lines = std::move(pf.lines);
+  // The points and the complex are read, parsed and hashed on two threads when there are two:
+  // the same results and the same first error as one after the other. A points error is thrown
+  // first (task 0); a complex that failed, or is in the headerless gudhi format (whose reading
+  // needs the number of points), is read again below exactly as before.
+  const auto format = io::complex_format_from_name(o.complex_format).value_or(io::ComplexFormat::automatic);
+  std::optional<io::PointsFile> pf;
+  std::optional<io::ComplexFile> read_first;
+  detail::parallel_for(o.complex.empty() ? 1 : 2, threads, [&](std::size_t task, int) {
+    if (task == 0) {
+      in.points_text = io::read_file(o.points);
+      pf = io::parse_points_file(in.points_text, o.points, io::PointReadOptions{N, true});
+      in.points_sha256 = detail::Sha256::hex(in.points_text);
+      return;
+    }
+    try {
+      in.complex_text = io::read_file(o.complex);
+      in.complex_sha256 = detail::Sha256::hex(in.complex_text);
+      read_first = io::parse_complex(in.complex_text, o.complex, {format, 0});
+    } catch (const std::exception&) {  // thrown again below
+    }
+  });
+  in.points = std::move(pf->points);
+  in.point_lines = std::move(pf->lines);
   const io::PointSet& P = in.points;
   if (P.size() < static_cast<std::size_t>(m + 2))
     throw io::InputError(o.points, 0, "only " + std::to_string(P.size()) + " points: a closed " + std::to_string(m) +
                                           "-manifold needs at least m + 2 = " + std::to_string(m + 2));
   if (!o.complex.empty()) {
-    in.complex_text = io::read_file(o.complex);
-    io::ComplexFile cf = io::parse_complex(
-        in.complex_text, o.complex, {io::complex_format_from_name(o.complex_format).value_or(io::ComplexFormat::automatic), P.size()});
+    if (!read_first || read_first->format == io::ComplexFormat::gudhi) {
+      if (in.complex_sha256.empty()) {  // the first read failed: fails again here, or the file came back
+        in.complex_text = io::read_file(o.complex);
+        in.complex_sha256 = detail::Sha256::hex(in.complex_text);
+      }
+      read_first = io::parse_complex(in.complex_text, o.complex, {format, P.size()});
+    }
+    io::ComplexFile& cf = *read_first;
     in.complex_read = {{"format", io::to_string(cf.format)}, {"note", cf.note}};
     if (cf.complex.num_vertices != P.size())
       throw io::InputError(o.complex, cf.counts_line,
@@ -174,8 +199,8 @@ json inputs_json(const Inputs& in, const CertifyOptions& o) {
   json j;
   j["manifold"] = {{"source", o.manifold}, {"name", in.spec.name}, {"sha256", detail::Sha256::hex(in.spec_text)},
                    {"intrinsic_dimension", in.spec.intrinsic_dimension}, {"ambient_dimension", in.spec.ambient_dimension}};
-  j["points"] = {{"path", o.points}, {"sha256", detail::Sha256::hex(in.points_text)}, {"count", in.points.size()}};
-  j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", detail::Sha256::hex(in.complex_text)},
+  j["points"] = {{"path", o.points}, {"sha256", in.points_sha256}, {"count", in.points.size()}};
+  j["complex"] = in.given ? json{{"path", o.complex}, {"sha256", in.complex_sha256},
                                  {"simplices", in.given->simplices.size()}, {"read", in.complex_read}}
                           : json(nullptr);
   j["residual_tolerance"] = {{"value", exact::rational_to_string(in.spec.residual_tolerance)},
@@ -1138,7 +1163,7 @@ Certificate run_certify(const CertifyOptions& o) {
   Distribution D{o.world ? o.world : &one_process, {}};
   const bool root = D.root();
 
-  Inputs in = read_inputs(o);
+  Inputs in = read_inputs(o, threads);
   const io::ManifoldSpec& spec = in.spec;
   const io::PointSet& P = in.points;
   const io::Claims& claims = in.claims;

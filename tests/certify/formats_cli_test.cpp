@@ -57,6 +57,27 @@ TEST(FormatsCli, GudhiListsAreDetectedOrNamed) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// The points and the complex are read on two threads; the first error is still the points' when
+// both files are bad (or the complex is missing), and the complex's when only it is bad.
+TEST(FormatsCli, ThePointsErrorComesFirstOnAnyThreadCount) {
+  TempDir dir("formats-order");
+  const std::string bad_points = dir.file("bad.points"), bad_complex = dir.file("bad.complex");
+  write_text(bad_points, "delcert-points v1\n3 2\n0 0 1\n0 0 x\n");
+  write_text(bad_complex, "delcert-complex v1\n2 3\n0 1 x\n");
+  for (const std::string threads : {"1", "2"}) {
+    const std::string base = binary() + " --manifold builtin:sphere-2 --threads " + threads;
+    for (const std::string& complex : {bad_complex, dir.file("missing.complex")}) {
+      RunResult r = run(base + " --points " + q(bad_points) + " --complex " + q(complex), dir);
+      EXPECT_EQ(r.exit_code, 2) << r.err;
+      EXPECT_NE(r.err.find(bad_points + ":4:"), std::string::npos) << threads << "\n" << r.err;
+      EXPECT_EQ(r.err.find(complex), std::string::npos) << threads << "\n" << r.err;
+    }
+    RunResult r = run(base + " --points " + q(fixture("points/octahedron.off")) + " --complex " + q(bad_complex), dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(bad_complex + ":3:"), std::string::npos) << threads << "\n" << r.err;
+  }
+}
+
 TEST(FormatsCli, MalformedMeshesAreRefusedWithFileAndLine) {
   TempDir dir("formats-bad");
   const struct {
