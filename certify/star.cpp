@@ -105,7 +105,7 @@ struct Local {
 std::vector<IA> gram_enclosure(const exact::TangentSpace& T, int m) {
   std::vector<IA> g(m * m);
   for (int a = 0; a < m; ++a)
-    for (int b = 0; b < m; ++b) g[a * m + b] = to_interval_number(exact::enclose(T.gram(a, b)));
+    for (int b = 0; b < m; ++b) g[a * m + b] = to_interval_number(T.gram_enclosure(a, b));
   return g;
 }
 
@@ -630,7 +630,7 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
   exact::TangentSpace T(*S.system, P.point(p));
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
-    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T.basis(i, a)));
+    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(T.basis_enclosure(i, a));
   const std::vector<IA> G = gram_enclosure(T, m);
   out.basis_enclosure.reserve(U.size()), out.gram_enclosure.reserve(G.size());
   for (const IA& x : U) out.basis_enclosure.push_back(to_interval(x));  // for check 7 (no second exact basis)
@@ -735,7 +735,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
   exact::TangentSpace T(*S.system, P.point(p));
   std::vector<IA> U(N * m);
   for (int i = 0; i < N; ++i)
-    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(exact::enclose(T.basis(i, a)));
+    for (int a = 0; a < m; ++a) U[i * m + a] = to_interval_number(T.basis_enclosure(i, a));
   const std::vector<IA> G = gram_enclosure(T, m);
   double r = kInitialRadiusGridCells * S.grid->spacing();
   for (int v : s) {

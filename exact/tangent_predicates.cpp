@@ -403,7 +403,7 @@ std::vector<mpq_class> TangentCell::centre_exact() const {
   std::vector<mpq_class> c(N);
   for (int i = 0; i < N; ++i) {
     mpq_class acc = 0;
-    for (int a = 0; a < m; ++a) acc += sp.U_rational[i * m + a] * (*y)[a];
+    for (int a = 0; a < m; ++a) acc += sp.U_rational()[i * m + a] * (*y)[a];
     c[i] = to_rational(sp.p[i]) + acc / 2;
   }
   return c;

@@ -21,6 +21,22 @@ using detail::IA;
 
 namespace {
 
+// The tightest double interval holding x: enclose(to_mpq(x)) (number_types.hpp), without the
+// rational when CGAL's enclosure [lo, hi] of the dyadic x already is it: x equal to an end (an
+// exact comparison of dyadics), or lo and hi adjacent doubles with x strictly between them, so
+// lo = RD(x) and hi = RU(x), which is what enclose returns (for x > 0 its truncation RD(x) and
+// the next double up, for x < 0 the next double down and RU(x)). Otherwise (wider, infinite)
+// through the rational.
+Interval tight_enclosure(const EX& x) {
+  const auto [lo, hi] = x.to_interval();
+  if (std::isfinite(lo) && std::isfinite(hi)) {
+    if (EX(lo) == x) return Interval::point(lo);
+    if (EX(hi) == x) return Interval::point(hi);
+    if (lo < hi && std::nextafter(lo, std::numeric_limits<double>::infinity()) == hi) return {lo, hi};
+  }
+  return enclose(detail::to_mpq(x));
+}
+
 std::vector<EX> to_ex(std::span<const double> x) {
   std::vector<EX> out;
   out.reserve(x.size());
@@ -256,12 +272,12 @@ TangentSpace::TangentSpace(const ImplicitSystem& system, std::span<const double>
     }
   }
 
-  // Enclosures, rationals and the exact Gram matrix.
+  // Enclosures and the exact Gram matrix (the rationals wait for their first use).
   impl->U_interval.reserve(impl->U_exact.size());
-  impl->U_rational.reserve(impl->U_exact.size());
+  impl->U_tight.reserve(impl->U_exact.size());
   for (const auto& u : impl->U_exact) {
     impl->U_interval.push_back(detail::enclose_ex(u));
-    impl->U_rational.push_back(detail::to_mpq(u));
+    impl->U_tight.push_back(tight_enclosure(u));
   }
   {
     detail::EnsureUpward guard;
@@ -285,23 +301,18 @@ TangentSpace::TangentSpace(const ImplicitSystem& system, std::span<const double>
       impl->U_err.push_back((IA((N + 3) * eps) * IA(std::abs(mid)) + IA(1 + 2 * eps) * IA(rad)).sup());
     }
   }
-  impl->gram.assign(static_cast<std::size_t>(m) * m, mpq_class(0));
+  impl->G_exact.assign(static_cast<std::size_t>(m) * m, EX(0));
   for (int a = 0; a < m; ++a)
     for (int b = a; b < m; ++b) {
       EX g(0);
       for (int i = 0; i < N; ++i) g = g + impl->U_exact[i * m + a] * impl->U_exact[i * m + b];
-      impl->gram[a * m + b] = impl->gram[b * m + a] = detail::to_mpq(g);
+      impl->G_exact[a * m + b] = impl->G_exact[b * m + a] = g;
     }
+  for (const auto& g : impl->G_exact) impl->G_tight.push_back(tight_enclosure(g));
   // adj(G) (symmetric): cofactors by exact determinants. Used by faces of dimension < m, which
   // (like all tangential predicates) are supported for m <= kMaxIntrinsicDim.
   if (m <= detail::kMaxIntrinsicDim) {
-    std::vector<EX> G(static_cast<std::size_t>(m) * m);
-    for (int a = 0; a < m; ++a)
-      for (int b = 0; b < m; ++b) {
-        EX g(0);
-        for (int i = 0; i < N; ++i) g = g + impl->U_exact[i * m + a] * impl->U_exact[i * m + b];
-        G[a * m + b] = g;
-      }
+    std::vector<EX> G = impl->G_exact;
     impl->adj_gram_exact.assign(static_cast<std::size_t>(m) * m, EX(0));
     adjugate(G.data(), m, impl->adj_gram_exact.data());
     for (const auto& a : impl->adj_gram_exact) impl->adj_gram_interval.push_back(detail::enclose_ex(a));
@@ -312,15 +323,29 @@ TangentSpace::TangentSpace(const ImplicitSystem& system, std::span<const double>
 int TangentSpace::ambient_dimension() const { return impl_->N; }
 int TangentSpace::intrinsic_dimension() const { return impl_->m; }
 std::span<const double> TangentSpace::point() const { return impl_->p; }
-const mpq_class& TangentSpace::basis(int row, int col) const { return impl_->U_rational.at(row * impl_->m + col); }
-const mpq_class& TangentSpace::gram(int a, int b) const { return impl_->gram.at(a * impl_->m + b); }
+const std::vector<mpq_class>& TangentSpace::Impl::U_rational() const {
+  std::call_once(rational_once, [this] {
+    for (const auto& u : U_exact) U_rational_.push_back(detail::to_mpq(u));
+    for (const auto& g : G_exact) gram_.push_back(detail::to_mpq(g));
+  });
+  return U_rational_;
+}
+const std::vector<mpq_class>& TangentSpace::Impl::gram() const {
+  U_rational();
+  return gram_;
+}
+
+const mpq_class& TangentSpace::basis(int row, int col) const { return impl_->U_rational().at(row * impl_->m + col); }
+const mpq_class& TangentSpace::gram(int a, int b) const { return impl_->gram().at(a * impl_->m + b); }
+Interval TangentSpace::basis_enclosure(int row, int col) const { return impl_->U_tight.at(row * impl_->m + col); }
+Interval TangentSpace::gram_enclosure(int a, int b) const { return impl_->G_tight.at(a * impl_->m + b); }
 const std::vector<int>& TangentSpace::pivot_columns() const { return impl_->pivots; }
 const std::vector<int>& TangentSpace::free_columns() const { return impl_->frees; }
 
 Eigen::MatrixXd TangentSpace::basis_approx() const {
   Eigen::MatrixXd U(impl_->N, impl_->m);
   for (int i = 0; i < impl_->N; ++i)
-    for (int a = 0; a < impl_->m; ++a) U(i, a) = impl_->U_rational[i * impl_->m + a].get_d();
+    for (int a = 0; a < impl_->m; ++a) U(i, a) = impl_->U_rational()[i * impl_->m + a].get_d();
   return U;
 }
 
@@ -330,14 +355,14 @@ std::vector<mpq_class> TangentSpace::project_exact(std::span<const double> x) co
   std::vector<mpq_class> d(N), r(m, mpq_class(0));
   for (int i = 0; i < N; ++i) d[i] = to_rational(x[i]) - to_rational(impl_->p[i]);
   for (int a = 0; a < m; ++a)
-    for (int i = 0; i < N; ++i) r[a] += impl_->U_rational[i * m + a] * d[i];
+    for (int i = 0; i < N; ++i) r[a] += impl_->U_rational()[i * m + a] * d[i];
   // G z = r, G = U^T U symmetric positive definite.
-  const auto z = solve(impl_->gram, r, m);
+  const auto z = solve(impl_->gram(), r, m);
   if (!z) throw std::domain_error("singular Gram matrix (internal error: U must have full rank)");
   std::vector<mpq_class> out(N);
   for (int i = 0; i < N; ++i) {
     out[i] = to_rational(impl_->p[i]);
-    for (int a = 0; a < m; ++a) out[i] += impl_->U_rational[i * m + a] * (*z)[a];
+    for (int a = 0; a < m; ++a) out[i] += impl_->U_rational()[i * m + a] * (*z)[a];
   }
   return out;
 }

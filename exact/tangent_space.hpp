@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/interval.hpp"
 #include "exact/polynomial.hpp"
 
 namespace delcert::exact {
@@ -79,6 +80,11 @@ class TangentSpace {
   const mpq_class& basis(int row, int col) const;
   // G = U^T U, m x m, exact.
   const mpq_class& gram(int a, int b) const;
+  // The tightest double intervals holding basis(row, col) and gram(a, b): equal to
+  // enclose(basis(row, col)) and enclose(gram(a, b)) (number_types.hpp), without the rationals
+  // (those are converted on first use).
+  Interval basis_enclosure(int row, int col) const;
+  Interval gram_enclosure(int a, int b) const;
   // U rounded to the nearest doubles (for approximate work and diagnostics only).
   Eigen::MatrixXd basis_approx() const;
   const std::vector<int>& pivot_columns() const;  // the k columns P of J used as pivots

@@ -1,9 +1,11 @@
 // Private data of ImplicitSystem, TangentSpace and TangentChart. Include only from exact/*.cpp.
 #pragma once
 
+#include <mutex>
 #include <vector>
 
 #include "exact/detail/cgal_number_types.hpp"
+#include "exact/interval.hpp"
 #include "exact/polynomial.hpp"
 #include "exact/tangent_predicates.hpp"
 #include "exact/tangent_space.hpp"
@@ -35,8 +37,14 @@ struct TangentSpace::Impl {
   std::vector<double> U_rad;          // N x m: |U_exact - U_mid| <= U_rad (rounded up)
   std::vector<double> U_err;          // N x m: error weights of the fast chart rows (see
                                       // interval_row in tangent_predicates.cpp)
-  std::vector<mpq_class> U_rational;  // N x m row-major
-  std::vector<mpq_class> gram;        // m x m
+  std::vector<Interval> U_tight;     // N x m: the tightest double enclosures of U_exact
+  std::vector<detail::EX> G_exact;   // m x m: G = U^T U
+  std::vector<Interval> G_tight;     // m x m: the tightest double enclosures of G_exact
+  // U and G as rationals, converted on first use (exact fallbacks, reports); thread-safe.
+  const std::vector<mpq_class>& U_rational() const;
+  const std::vector<mpq_class>& gram() const;
+  mutable std::once_flag rational_once;
+  mutable std::vector<mpq_class> U_rational_, gram_;
   std::vector<detail::EX> adj_gram_exact;     // adj(G) = det(G) G^{-1}, m x m (faces)
   std::vector<detail::IA> adj_gram_interval;  // enclosures of adj_gram_exact
   std::vector<int> pivots, frees;

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 
+#include "exact/number_types.hpp"
 #include "support.hpp"
 
 namespace delcert::exact {
@@ -68,6 +71,39 @@ TEST(TangentSpace, ExactKernelBasisOnAllBuiltinManifolds) {
       EXPECT_EQ(T.ambient_dimension(), M.N);
       EXPECT_EQ(T.intrinsic_dimension(), M.m);
       expect_valid_basis(F, T);
+    }
+  }
+}
+
+// basis_enclosure and gram_enclosure are enclose() of the rationals, on every built-in manifold
+// and at points scaled to adversarial magnitudes (2^-1030 ... 2^1000: subnormal entries, entries
+// and Gram entries past the double range, where the enclosure goes through the rational).
+TEST(TangentSpace, EnclosuresAreTheTightestOfTheRationals) {
+  testing::Rng rng(12);
+  for (const auto& M : testing::test_manifolds()) {
+    SCOPED_TRACE(M.name);
+    const ImplicitSystem F = ImplicitSystem::parse(M.equations, M.N);
+    for (int trial = 0; trial < 40; ++trial) {
+      auto p = testing::sample_near(M, rng);
+      const int e = trial < 10 ? 0 : -1030 + 2030 * (trial - 10) / 29;  // 0, then -1030 .. 1000
+      for (auto& v : p) v = std::ldexp(v + 1e-3 * rng.normal(), e);
+      std::optional<TangentSpace> T;
+      try {
+        T.emplace(F, p);
+      } catch (const std::domain_error&) {
+        continue;  // a point whose coordinates underflowed to 0 can be singular
+      }
+      const int N = T->ambient_dimension(), m = T->intrinsic_dimension();
+      for (int i = 0; i < N; ++i)
+        for (int a = 0; a < m; ++a) {
+          const Interval want = enclose(T->basis(i, a)), got = T->basis_enclosure(i, a);
+          EXPECT_TRUE(got.lo == want.lo && got.hi == want.hi) << "U(" << i << ", " << a << ") at 2^" << e;
+        }
+      for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b) {
+          const Interval want = enclose(T->gram(a, b)), got = T->gram_enclosure(a, b);
+          EXPECT_TRUE(got.lo == want.lo && got.hi == want.hi) << "G(" << a << ", " << b << ") at 2^" << e;
+        }
     }
   }
 }
