@@ -203,6 +203,7 @@ IA power_box(const Local& L, const CellBox& box, int q) {
 
 Simplex to_global(const Local& L, const List& c) {
   Simplex s;
+  s.reserve(L.m + 1);
   for (int i = 0; i <= L.m; ++i) s.push_back(L.global[c[i]]);
   std::sort(s.begin(), s.end());
   return s;

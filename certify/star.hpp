@@ -97,6 +97,7 @@ struct StarReport {
   std::span<const int> simplex(int i) const { const std::size_t k = vertices.size() / cells; return {vertices.data() + i * k, k}; }
   std::vector<Simplex> simplices() const {
     std::vector<Simplex> s;
+    s.reserve(cells);
     for (int i = 0; i < cells; ++i) s.emplace_back(simplex(i).begin(), simplex(i).end());
     return s;
   }

@@ -604,8 +604,9 @@ TopologyReport analyse_topology(const io::Complex& K, int m, const FaceLattice* 
   } else if (m == 2) {  // is_sphere itself (a cycle test) in parallel; its answer depends only on the vertex
     detail::parallel_for(K.num_vertices, threads, [&](std::size_t v, int) {
       std::vector<std::vector<int>> link;
+      link.reserve(incident[v].size());
       for (long j : incident[v]) {
-        link.emplace_back();
+        link.emplace_back().reserve(2);
         for (int x : K.simplices[j])
           if (x != static_cast<int>(v)) link.back().push_back(x);
       }

@@ -1,6 +1,7 @@
 #include "io/complex.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <limits>
 #include <map>
@@ -26,6 +27,7 @@ std::vector<int> parse_simplex(const std::vector<std::string_view>& tokens, std:
                      "a simplex with " + std::to_string(tokens.size() - first) + " vertices; at most " +
                          std::to_string(kMaxSimplexVertices) +
                          " are allowed (ambient dimension <= " + std::to_string(kMaxAmbientDimension) + "), and a simplex of an m-manifold has m + 1");
+  s.reserve(tokens.size() - first);
   for (std::size_t k = first; k < tokens.size(); ++k) {
     long v = parse_count(tokens[k], file, line, "a vertex index");
     if (static_cast<std::size_t>(v) >= num_vertices)
@@ -34,9 +36,10 @@ std::vector<int> parse_simplex(const std::vector<std::string_view>& tokens, std:
                            std::to_string(num_vertices) + " vertices (indices are 0-based)");
     s.push_back(static_cast<int>(v));
   }
-  auto sorted = s;
-  std::sort(sorted.begin(), sorted.end());
-  if (auto it = std::adjacent_find(sorted.begin(), sorted.end()); it != sorted.end())
+  std::array<int, kMaxSimplexVertices> sorted{};  // no allocation per simplex
+  std::copy(s.begin(), s.end(), sorted.begin());
+  std::sort(sorted.begin(), sorted.begin() + s.size());
+  if (auto it = std::adjacent_find(sorted.begin(), sorted.begin() + s.size()); it != sorted.begin() + s.size())
     throw InputError(file, line, "vertex " + std::to_string(*it) + " repeated in a simplex; a simplex has distinct vertices");
   return s;
 }

@@ -19,6 +19,7 @@ std::vector<Line> split_lines(const std::string& text) {
     pos = end + 1;
     if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     Line l{number, {}};
+    if (!line.empty()) l.tokens.reserve(8);  // one allocation for a usual line (a point, a simplex)
     std::size_t i = 0;
     while (i < line.size()) {
       while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
