@@ -13,6 +13,7 @@
 #include "exact/manifold_distance.hpp"
 #include "exact/number_types.hpp"
 #include "exact/simplex_predicates.hpp"
+#include "exact/tangent_space.hpp"
 #include "io/input_error.hpp"
 
 namespace delcert::certify {
@@ -74,7 +75,14 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   for (int i = 0; i < k; ++i)
     for (int v = 0; v < N; ++v) jac[i].push_back(spec.equations[i].derivative(v));
   auto line_of = [&](std::size_t i) { return i < lines.size() ? lines[i] : 0L; };
-  std::vector<mpq_class> worst(n);  // max_i |F_i(p)| per point, exact
+  // Residuals: a tight enclosure of each |F_i(p)| from exact dyadic arithmetic first
+  // (ImplicitSystem::residual_enclosures); the rational |F_i(p)| only where it cannot settle the
+  // comparison with the tolerance, and below for the points that can hold the largest residual.
+  const exact::ImplicitSystem system(spec.equations, N);
+  const exact::Interval tol = exact::enclose(spec.residual_tolerance);
+  auto residual = [&](const std::vector<mpq_class>& x, int i) { return mpq_class(abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)))); };
+  std::vector<exact::Interval> worst(n);  // encloses max_i |F_i(p)| per point
+  std::vector<char> off(n, 0);            // some |F_i(p)| > residual_tolerance (decided exactly)
   std::vector<double> distance(n);  // certified upper bound on the distance from p to M
   // The distance test runs at the scale of the coordinates (exact/manifold_distance.hpp).
   double magnitude = 0;
@@ -82,9 +90,16 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   const int scale_exponent = magnitude > 0 && std::isfinite(magnitude) ? std::ilogb(magnitude) : 0;
   const exact::ManifoldDistance to_M(spec.equations, N, spec.selector ? &*spec.selector : nullptr, scale_exponent);
   detail::parallel_for(n, threads, [&](std::size_t idx, int) {
-    std::vector<mpq_class> x = exact::to_rational(points.point(idx));
+    std::optional<std::vector<mpq_class>> xq;  // p as rationals, when needed
+    auto x = [&]() -> const std::vector<mpq_class>& {
+      if (!xq) xq = exact::to_rational(points.point(idx));
+      return *xq;
+    };
+    const std::vector<exact::Interval> r = system.residual_enclosures(points.point(idx));
     for (int i = 0; i < k; ++i) {
-      mpq_class f = abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)));
+      worst[idx] = {std::max(worst[idx].lo, r[i].lo), std::max(worst[idx].hi, r[i].hi)};
+      if (r[i].hi <= tol.lo) continue;  // |F_i(p)| <= tolerance
+      const mpq_class f = residual(x(), i);
       if (f > spec.residual_tolerance && !accept_off_manifold)
         throw io::InputError(file, line_of(idx),
                              "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
@@ -93,9 +108,9 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
                                  " (exactly), and the tangential Delaunay complex needs T_p M; project the point onto "
                                  "M, raise residual_tolerance in the spec (or pass --residual-tolerance), or, for a complex claimed to be restricted "
                                  "Delaunay (a mesher's output), pass it with --complex and --kind restricted");
-      if (f > worst[idx]) worst[idx] = f;
+      if (f > spec.residual_tolerance) off[idx] = 1;
     }
-    if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(x))) <= 0)
+    if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(x()))) <= 0)
       throw io::InputError(file, line_of(idx),
                            "point " + std::to_string(idx) + " lies on the wrong component: the selector " +
                                spec.selector_text + " is not > 0 there");
@@ -111,7 +126,7 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
     if (!full_rank) {
       std::vector<mpq_class> J(static_cast<std::size_t>(k) * N);
       for (int i = 0; i < k; ++i)
-        for (int v = 0; v < N; ++v) J[i * N + v] = jac[i][v].evaluate(std::span<const mpq_class>(x));
+        for (int v = 0; v < N; ++v) J[i * N + v] = jac[i][v].evaluate(std::span<const mpq_class>(x()));
       if (exact_rank(std::move(J), k, N) != k)
         throw io::InputError(file, line_of(idx),
                              "the Jacobian of F is rank-deficient at point " + std::to_string(idx) +
@@ -130,11 +145,25 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   SanityResult R;
   CheckEntry& e = R.entry;
   for (std::size_t i = 0; i < n; ++i)
-    if (worst[i] > spec.residual_tolerance) R.off_manifold.push_back(static_cast<int>(i));
+    if (off[i]) R.off_manifold.push_back(static_cast<int>(i));
+  // The largest residual, exactly, at the smallest index attaining it: a point whose enclosure
+  // ends below the largest lower bound cannot attain it, so only the others are evaluated (an
+  // enclosure [0, 0] is the exact 0).
+  double floor = 0;
+  for (const auto& w : worst) floor = std::max(floor, w.lo);
+  std::vector<std::size_t> can;
+  for (std::size_t i = 0; i < n; ++i)
+    if (worst[i].hi >= floor) can.push_back(i);
+  std::vector<mpq_class> exact_worst(can.size());
+  detail::parallel_for(can.size(), threads, [&](std::size_t c, int) {
+    if (worst[can[c]].hi == 0) return;
+    const std::vector<mpq_class> x = exact::to_rational(points.point(can[c]));
+    for (int i = 0; i < k; ++i) exact_worst[c] = std::max(exact_worst[c], residual(x, i));
+  });
   std::size_t arg = 0;
-  for (std::size_t i = 1; i < n; ++i)
-    if (worst[i] > worst[arg]) arg = i;
-  mpq_class maxres = n ? worst[arg] : mpq_class(0);
+  mpq_class maxres(0);
+  for (std::size_t c = 0; c < can.size(); ++c)
+    if (c == 0 || exact_worst[c] > maxres) maxres = exact_worst[c], arg = can[c];
   std::size_t far = 0;  // the smallest index attaining the largest distance bound
   for (std::size_t i = 1; i < n; ++i)
     if (distance[i] > distance[far]) far = i;

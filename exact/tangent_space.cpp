@@ -28,7 +28,7 @@ namespace {
 // the next double up, for x < 0 the next double down and RU(x)). Otherwise (wider, infinite)
 // through the rational.
 Interval tight_enclosure(const EX& x) {
-  const auto [lo, hi] = x.to_interval();
+  const auto [lo, hi] = detail::to_interval_nearest(x);
   if (std::isfinite(lo) && std::isfinite(hi)) {
     if (EX(lo) == x) return Interval::point(lo);
     if (EX(hi) == x) return Interval::point(hi);
@@ -102,6 +102,10 @@ ImplicitSystem::ImplicitSystem(std::vector<Polynomial> equations, int N) {
     const Polynomial& f = impl->equations[i];
     const auto form = f.integer_form();
     Polynomial scaled = f.scaled(mpq_class(form.denominator));
+    impl->scaled.push_back(scaled);
+    impl->scaled_coefficients.emplace_back();
+    for (const auto& t : scaled.terms()) impl->scaled_coefficients.back().push_back(detail::to_ex(t.coefficient.get_num()));
+    impl->denominators.push_back(enclose(mpq_class(form.denominator)));
     for (int j = 0; j < N; ++j) {
       Polynomial d = scaled.is_zero() ? Polynomial(N) : scaled.derivative(j);
       std::vector<EX> coefs;
@@ -128,6 +132,23 @@ int ImplicitSystem::ambient_dimension() const { return impl_->N; }
 int ImplicitSystem::codimension() const { return impl_->k; }
 int ImplicitSystem::intrinsic_dimension() const { return impl_->N - impl_->k; }
 const std::vector<Polynomial>& ImplicitSystem::equations() const { return impl_->equations; }
+
+std::vector<Interval> ImplicitSystem::residual_enclosures(std::span<const double> x) const {
+  const Impl& S = *impl_;
+  if (static_cast<int>(x.size()) != S.N) throw std::invalid_argument("point has the wrong dimension");
+  const std::vector<EX> xe = to_ex(x);
+  detail::EnsureUpward up;  // the interval division below
+  std::vector<Interval> out;
+  for (int i = 0; i < S.k; ++i) {
+    const auto& coefs = S.scaled_coefficients[i];
+    EX s = S.scaled[i].is_zero() ? EX(0)
+                                 : S.scaled[i].evaluate_with<EX>(std::span<const EX>(xe), [&](std::size_t t) { return coefs[t]; });
+    if (s.sign() < 0) s = EX(0) - s;
+    const IA v = detail::enclose_ex(s) / IA(S.denominators[i].lo, S.denominators[i].hi);
+    out.push_back({std::max(0.0, v.inf()), v.sup()});
+  }
+  return out;
+}
 
 std::vector<EX> ImplicitSystem::Impl::jacobian_at(const std::vector<EX>& x) const {
   std::vector<EX> J(static_cast<std::size_t>(k) * N);

@@ -11,6 +11,8 @@
 #include <CGAL/Mpzf.h>
 #include <gmpxx.h>
 
+#include <utility>
+
 #include "exact/filter_stats.hpp"
 #include "exact/interval.hpp"
 #include "exact/interval_arithmetic.hpp"
@@ -46,9 +48,22 @@ inline EX to_ex(const mpz_class& z) {
   return s < 0 ? EX(-r) : r;
 }
 
-// Enclosure of an exact value as a double interval (independent of the rounding mode).
+// Enclosure of an exact value as a double interval, in any rounding mode. Mpzf::to_interval is
+// only right in round-to-nearest: it scales its (exact) 53-bit bounds by
+// ldexp(Interval_nt, e), which takes std::ldexp(1.0, e) as the exact factor unless it is 0; for
+// e < -1074 that is 0 under round-to-nearest (and the factor becomes [0, min double]) but
+// 2^-1074 under upward rounding, a point factor far above 2^e: the enclosure of a value below
+// about 2^-1022 would miss it (2^-2000 came out as [1.85 2^-1022, ...]). So the call runs in
+// round-to-nearest (a read of the control word when it already is).
+inline std::pair<double, double> to_interval_nearest(const EX& x) {
+  const CGAL::FPU_CW_t saved = CGAL::FPU_get_cw();
+  if (saved != CGAL_FE_TONEAREST) CGAL::FPU_set_cw(CGAL_FE_TONEAREST);
+  const auto p = x.to_interval();
+  if (saved != CGAL_FE_TONEAREST) CGAL::FPU_set_cw(saved);
+  return p;
+}
 inline IA enclose_ex(const EX& x) {
-  auto p = x.to_interval();
+  const auto p = to_interval_nearest(x);
   return IA(p.first, p.second);
 }
 

@@ -22,6 +22,9 @@ struct ImplicitSystem::Impl {
   std::vector<Polynomial> jacobian;
   std::vector<std::vector<detail::EX>> jacobian_coefficients;  // exact, aligned with terms()
   std::vector<DoublePolynomial> jacobian_double;              // for pivot selection
+  std::vector<Polynomial> scaled;                             // S_i = D_i F_i, integer coefficients
+  std::vector<std::vector<detail::EX>> scaled_coefficients;   // exact, aligned with terms()
+  std::vector<Interval> denominators;                         // enclosures of D_i > 0
 
   // Exact J at x (x already converted to EX), k x N row-major.
   std::vector<detail::EX> jacobian_at(const std::vector<detail::EX>& x) const;

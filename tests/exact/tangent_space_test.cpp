@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -77,7 +78,8 @@ TEST(TangentSpace, ExactKernelBasisOnAllBuiltinManifolds) {
 
 // basis_enclosure and gram_enclosure are enclose() of the rationals, on every built-in manifold
 // and at points scaled to adversarial magnitudes (2^-1030 ... 2^1000: subnormal entries, entries
-// and Gram entries past the double range, where the enclosure goes through the rational).
+// and Gram entries past the double range, where the enclosure goes through the rational), built
+// under upward rounding as the certifier builds them.
 TEST(TangentSpace, EnclosuresAreTheTightestOfTheRationals) {
   testing::Rng rng(12);
   for (const auto& M : testing::test_manifolds()) {
@@ -86,9 +88,11 @@ TEST(TangentSpace, EnclosuresAreTheTightestOfTheRationals) {
     for (int trial = 0; trial < 40; ++trial) {
       auto p = testing::sample_near(M, rng);
       const int e = trial < 10 ? 0 : -1030 + 2030 * (trial - 10) / 29;  // 0, then -1030 .. 1000
+      // (the minors of SO(3)'s codimension-6 Jacobian fall below 2^-1074 from about 2^-180)
       for (auto& v : p) v = std::ldexp(v + 1e-3 * rng.normal(), e);
       std::optional<TangentSpace> T;
       try {
+        UpwardRounding up;  // as in the certifier's stars: the enclosures must not depend on it
         T.emplace(F, p);
       } catch (const std::domain_error&) {
         continue;  // a point whose coordinates underflowed to 0 can be singular
@@ -106,6 +110,45 @@ TEST(TangentSpace, EnclosuresAreTheTightestOfTheRationals) {
         }
     }
   }
+}
+
+// residual_enclosures holds the exact |F_i(x)| and is tight (a few ulps), on every built-in
+// manifold, with rational coefficients, at 2^-1074 ... 2^1000 (F past the double range included).
+TEST(ImplicitSystem, ResidualEnclosuresHoldTheExactResiduals) {
+  testing::Rng rng(13);
+  auto check = [](const ImplicitSystem& F, const std::vector<double>& x) {
+    const std::vector<mpq_class> exact = F.evaluate_exact(x);
+    std::vector<Interval> got = F.residual_enclosures(x);
+    {
+      UpwardRounding up;  // as the certifier calls it: the same intervals in either mode
+      const std::vector<Interval> up_got = F.residual_enclosures(x);
+      for (std::size_t i = 0; i < got.size(); ++i)
+        EXPECT_TRUE(up_got[i].lo == got[i].lo && up_got[i].hi == got[i].hi) << i;
+    }
+    ASSERT_EQ(got.size(), exact.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      const mpq_class a = abs(exact[i]);
+      const Interval want = enclose(a);
+      EXPECT_TRUE(got[i].lo <= want.lo && want.hi <= got[i].hi) << i << ": [" << std::hexfloat << got[i].lo << ", " << got[i].hi << "] want [" << want.lo << ", " << want.hi << "]" << std::defaultfloat;
+      if (std::isfinite(want.hi) && want.hi < 0x1p1000 && want.lo > 0x1p-1000)  // normal range: a few ulps
+        EXPECT_LE(got[i].hi - got[i].lo, 8 * (want.hi - want.lo) + 8 * std::numeric_limits<double>::epsilon() * want.hi);
+      if (a == 0) EXPECT_TRUE(got[i].lo == 0 && got[i].hi == 0);
+    }
+  };
+  for (const auto& M : testing::test_manifolds()) {
+    SCOPED_TRACE(M.name);
+    const ImplicitSystem F = ImplicitSystem::parse(M.equations, M.N);
+    for (int trial = 0; trial < 40; ++trial) {
+      auto p = testing::sample_near(M, rng);
+      const int e = trial < 10 ? 0 : -1074 + 2074 * (trial - 10) / 29;
+      for (auto& v : p) v = std::ldexp(v + (trial % 2) * 1e-3 * rng.normal(), e);
+      check(F, p);
+    }
+  }
+  const ImplicitSystem G = ImplicitSystem::parse({"x1^2/3 + x2^2/7 + x3^2 - 5/11"}, 3);
+  check(G, {0.25, -0.5, 0.5});
+  check(G, {0, 0, 0});
+  check(ImplicitSystem::parse({"x1^2 + x2^2 + x3^2 - 1"}, 3), {1, 0, 0});  // exactly 0
 }
 
 TEST(TangentSpace, SphereBasisIsTheExpectedCofactorBasis) {
