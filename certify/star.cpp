@@ -526,8 +526,7 @@ CellClaims cell_claims(const StarSettings& S, int p) {
 
 // Tests one cell at p against every point of L: emptiness, ties, margin, claims. Raises
 // need_radius to the search radius this cell requires.
-CellReport test_list(const StarSettings& S, const Local& L, const List& c, double& need_radius, exact::FilterContext& ctx,
-                     const CellClaims& claims) {
+CellReport test_list(const Local& L, const List& c, double& need_radius, exact::FilterContext& ctx, const CellClaims& claims) {
   const int m = L.m;
   const auto& prot = claims.prot;
   const auto& eps2 = claims.eps2;
@@ -607,7 +606,7 @@ Verification verify(const StarSettings& S, const Local& L, const std::vector<Lis
   V.cells.reserve(cells.size());  // kept as the star (1M points: 256 bytes a point less than by doubling)
   const CellClaims claims = cell_claims(S, L.global[0]);
   for (const List& c : cells) {
-    V.cells.push_back(test_list(S, L, c, V.need_radius, ctx, claims));
+    V.cells.push_back(test_list(L, c, V.need_radius, ctx, claims));
     any_degenerate = any_degenerate || V.cells.back().degenerate;
   }
   const bool proven = std::all_of(V.cells.begin(), V.cells.end(), [](const CellReport& c) { return c.empty(); });
@@ -750,7 +749,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
     for (int i = 0, k = 1; i <= m; ++i)
       if (s[i] != p) c[k++] = L.local_of(s[i]);
     double need = 0;
-    CellReport R = test_list(S, L, sorted_list(c, m), need, ctx, cell_claims(S, p));
+    CellReport R = test_list(L, sorted_list(c, m), need, ctx, cell_claims(S, p));
     if (need <= r || L.all) return R;
     r = std::max(need * kNeededRadiusMargin, r * kMinRadiusGrowth);
   }

@@ -130,9 +130,12 @@ TEST(ImplicitSystem, ResidualEnclosuresHoldTheExactResiduals) {
       const mpq_class a = abs(exact[i]);
       const Interval want = enclose(a);
       EXPECT_TRUE(got[i].lo <= want.lo && want.hi <= got[i].hi) << i << ": [" << std::hexfloat << got[i].lo << ", " << got[i].hi << "] want [" << want.lo << ", " << want.hi << "]" << std::defaultfloat;
-      if (std::isfinite(want.hi) && want.hi < 0x1p1000 && want.lo > 0x1p-1000)  // normal range: a few ulps
+      if (std::isfinite(want.hi) && want.hi < 0x1p1000 && want.lo > 0x1p-1000) {  // normal range: a few ulps
         EXPECT_LE(got[i].hi - got[i].lo, 8 * (want.hi - want.lo) + 8 * std::numeric_limits<double>::epsilon() * want.hi);
-      if (a == 0) EXPECT_TRUE(got[i].lo == 0 && got[i].hi == 0);
+      }
+      if (a == 0) {
+        EXPECT_TRUE(got[i].lo == 0 && got[i].hi == 0);
+      }
     }
   };
   for (const auto& M : testing::test_manifolds()) {
