@@ -557,7 +557,7 @@ CellReport test_list(const Local& L, const List& c, double& need_radius, exact::
   // bound when one was left out. rho = 2.5R (when need is below it) keeps that bound, 1.25 R^2,
   // above the tested minimum in practice: a cell's nearest non-vertex point is normally closer.
   const double rho = std::max(need, (IA(2.5) * Rr).sup());
-  const double rho2 = (IA(rho) * IA(rho)).sup();
+  const double rho2 = rho <= DBL_MAX ? (IA(rho) * IA(rho)).sup() : INFINITY;  // infinite: every point is tested
   bool left_out = false;
   exact::Interval margin{INFINITY, INFINITY};
   for (int q = 1; q < L.size(); ++q) {
@@ -1005,12 +1005,13 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
   // like those FarFilter discards. Upper bounds of alpha_i, beta_i, a and w_i: interval
   // arithmetic on the enclosures (upward rounding is on); a NaN or infinite bound keeps w_i = r.
   std::vector<double> half(N, r);
-  if (reach_all >= 0 && reach_all <= DBL_MAX) {
+  if (reach_all >= 0 && reach_all <= DBL_MAX && r <= DBL_MAX) {
     const IA a = exact::sqrt(IA(reach_all));
     for (int i = 0; i < N; ++i) {
       IA alpha2(0);
       for (int k = 0; k < m; ++k)
         for (int l = 0; l < m; ++l) alpha2 += U[i * m + k] * Gi[k * m + l] * U[i * m + l];
+      if (!(alpha2.sup() <= DBL_MAX) || !(alpha2.inf() >= -DBL_MAX)) continue;  // keeps w_i = r
       const IA alpha = exact::sqrt(IA(std::max(0.0, alpha2.sup()))),
                beta = exact::sqrt(IA(std::max(0.0, (IA(1) - alpha2).sup())));
       const double w = (alpha * a + beta * IA(r)).sup();
