@@ -71,16 +71,12 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
                                 const std::string& file, bool accept_off_manifold, int threads) {
   const int N = spec.ambient_dimension, m = spec.intrinsic_dimension, k = N - m;
   const std::size_t n = points.size();
-  std::vector<std::vector<exact::Polynomial>> jac(k);
-  for (int i = 0; i < k; ++i)
-    for (int v = 0; v < N; ++v) jac[i].push_back(spec.equations[i].derivative(v));
   auto line_of = [&](std::size_t i) { return i < lines.size() ? lines[i] : 0L; };
   // Residuals: a tight enclosure of each |F_i(p)| from exact dyadic arithmetic first
   // (ImplicitSystem::residual_enclosures); the rational |F_i(p)| only where it cannot settle the
   // comparison with the tolerance, and below for the points that can hold the largest residual.
   const exact::ImplicitSystem system(spec.equations, N);
   const exact::Interval tol = exact::enclose(spec.residual_tolerance);
-  auto residual = [&](const std::vector<mpq_class>& x, int i) { return mpq_class(abs(spec.equations[i].evaluate(std::span<const mpq_class>(x)))); };
   std::vector<exact::Interval> worst(n);  // encloses max_i |F_i(p)| per point
   std::vector<char> off(n, 0);            // some |F_i(p)| > residual_tolerance (decided exactly)
   std::vector<double> distance(n);  // certified upper bound on the distance from p to M
@@ -90,16 +86,14 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   const int scale_exponent = magnitude > 0 && std::isfinite(magnitude) ? std::ilogb(magnitude) : 0;
   const exact::ManifoldDistance to_M(spec.equations, N, spec.selector ? &*spec.selector : nullptr, scale_exponent);
   detail::parallel_for(n, threads, [&](std::size_t idx, int) {
-    std::optional<std::vector<mpq_class>> xq;  // p as rationals, when needed
-    auto x = [&]() -> const std::vector<mpq_class>& {
-      if (!xq) xq = exact::to_rational(points.point(idx));
-      return *xq;
-    };
-    const std::vector<exact::Interval> r = system.residual_enclosures(points.point(idx));
+    const auto p = points.point(idx);
+    std::optional<std::vector<mpq_class>> F;  // F(p) exactly, when an enclosure does not decide
+    const std::vector<exact::Interval> r = system.residual_enclosures(p);
     for (int i = 0; i < k; ++i) {
       worst[idx] = {std::max(worst[idx].lo, r[i].lo), std::max(worst[idx].hi, r[i].hi)};
       if (r[i].hi <= tol.lo) continue;  // |F_i(p)| <= tolerance
-      const mpq_class f = residual(x(), i);
+      if (!F) F = system.evaluate_exact(p);
+      const mpq_class f = abs((*F)[i]);
       if (f > spec.residual_tolerance && !accept_off_manifold)
         throw io::InputError(file, line_of(idx),
                              "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
@@ -110,24 +104,20 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
                                  "Delaunay (a mesher's output), pass it with --complex and --kind restricted");
       if (f > spec.residual_tolerance) off[idx] = 1;
     }
-    if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(x()))) <= 0)
+    if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(exact::to_rational(p)))) <= 0)
       throw io::InputError(file, line_of(idx),
                            "point " + std::to_string(idx) + " lies on the wrong component: the selector " +
                                spec.selector_text + " is not > 0 there");
     // A small residual does not bound the distance to M (for (|x|^2 - 1)^2 = 0 a residual of
     // 1e-9 is a distance of 3e-5) nor prove that M is a manifold near p: certify both with an
     // interval Krawczyk test on the normal slice (exact/manifold_distance.hpp).
-    const auto p = points.point(idx);
     const exact::DistanceCertificate d = to_M.certify(p);
     // J_F has rank k at every point of d.region (step 4 there): when p lies in it, so at p; else
     // the rank of the exact Jacobian at p decides.
     bool full_rank = d.certified;
     for (int v = 0; v < N && full_rank; ++v) full_rank = d.region[v].lo <= p[v] && p[v] <= d.region[v].hi;
     if (!full_rank) {
-      std::vector<mpq_class> J(static_cast<std::size_t>(k) * N);
-      for (int i = 0; i < k; ++i)
-        for (int v = 0; v < N; ++v) J[i * N + v] = jac[i][v].evaluate(std::span<const mpq_class>(x()));
-      if (exact_rank(std::move(J), k, N) != k)
+      if (exact_rank(system.jacobian_exact(p), k, N) != k)
         throw io::InputError(file, line_of(idx),
                              "the Jacobian of F is rank-deficient at point " + std::to_string(idx) +
                                  ", so its tangent space p + ker J_F(p) is not an m-flat; move the point");
@@ -157,8 +147,7 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   std::vector<mpq_class> exact_worst(can.size());
   detail::parallel_for(can.size(), threads, [&](std::size_t c, int) {
     if (worst[can[c]].hi == 0) return;
-    const std::vector<mpq_class> x = exact::to_rational(points.point(can[c]));
-    for (int i = 0; i < k; ++i) exact_worst[c] = std::max(exact_worst[c], residual(x, i));
+    for (const mpq_class& f : system.evaluate_exact(points.point(can[c]))) exact_worst[c] = std::max(exact_worst[c], mpq_class(abs(f)));
   });
   std::size_t arg = 0;
   mpq_class maxres(0);
