@@ -333,9 +333,8 @@ TangentSpace::TangentSpace(const ImplicitSystem& system, std::span<const double>
   // adj(G) (symmetric): cofactors by exact determinants. Used by faces of dimension < m, which
   // (like all tangential predicates) are supported for m <= kMaxIntrinsicDim.
   if (m <= detail::kMaxIntrinsicDim) {
-    std::vector<EX> G = impl->G_exact;
     impl->adj_gram_exact.assign(static_cast<std::size_t>(m) * m, EX(0));
-    adjugate(G.data(), m, impl->adj_gram_exact.data());
+    adjugate(impl->G_exact.data(), m, impl->adj_gram_exact.data());
     for (const auto& a : impl->adj_gram_exact) impl->adj_gram_interval.push_back(detail::enclose_ex(a));
   }
   impl_ = std::move(impl);
