@@ -60,6 +60,7 @@ struct RefineArgs {
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
+  bool no_restricted_check = false;
 };
 
 // "round 12: 3456 points (+456); pending 3 big, 40 inconsistent": the rules with configurations
@@ -121,6 +122,7 @@ int run_refine(const RefineArgs& a) {
     throw io::InputError("delcert refine", 0, "--sizing-c and --eps-floor need --sizing curvature");
   }
   params.seed = a.seed;
+  params.restricted_check = !a.no_restricted_check;
   params.threads = a.threads;
   params.max_points = a.max_points;
   params.max_inserted = a.max_inserted;
@@ -266,6 +268,9 @@ Command add_refine_command(CLI::App& app) {
                   "cap on refinement rounds (0: none in practical mode, 2000 in paper mode); exit 4 when hit")
       ->capture_default_str()
       ->transform(whole_number("a round count", std::numeric_limits<std::size_t>::max()));
+  sub->add_flag("--no-restricted-check", args->no_restricted_check,
+                "practical mode: do not refine the simplices that are not restricted Delaunay with a margin (rule "
+                "not_restricted); faster, but Del_TM may then differ from Del_RM (certifier check 13)");
   sub->add_option("--out", args->out, "output directory (created if missing)")->required();
   sub->add_option("--mesh-out", args->mesh_out, kMeshOutHelp);
   return {sub, [args] { return run_refine(*args); }};

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 namespace delcert::manifold {
 
@@ -180,6 +181,42 @@ std::optional<Eigen::VectorXd> Manifold::project(std::span<const double> x0, con
   }
   if (options.max_distance > 0 && (z - x).norm() > options.max_distance) return std::nullopt;
   return z;
+}
+
+std::optional<Eigen::VectorXd> Manifold::equidistant_point(const Eigen::MatrixXd& vertices, const Eigen::VectorXd& start,
+                                                            const NewtonOptions& options) const {
+  const int k = codimension();
+  if (vertices.rows() != N_ || vertices.cols() != m_ + 1 || start.size() != N_)
+    throw std::invalid_argument("equidistant_point: needs m + 1 vertices and a start of dimension N");
+  // The m equidistance equations are linear: row i - 1 is (v_i - v_0)ᵀ, right-hand side
+  // (v_i - v_0)ᵀ (v_i + v_0) / 2 (|x - v_i|² = |x - v_0|² halved).
+  Eigen::MatrixXd A(m_, N_);
+  Eigen::VectorXd b(m_);
+  for (int i = 1; i <= m_; ++i) {
+    const Eigen::VectorXd d = vertices.col(i) - vertices.col(0);
+    A.row(i - 1) = d.transpose();
+    b[i - 1] = d.dot((vertices.col(i) + vertices.col(0)) / 2);
+  }
+  Eigen::VectorXd x = start;
+  Eigen::VectorXd G(N_);
+  Eigen::MatrixXd J(N_, N_);
+  J.bottomRows(m_) = A;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    G.head(k) = evaluate(as_span(x));
+    G.tail(m_) = A * x - b;
+    J.topRows(k) = jacobian(as_span(x));
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+    if (!lu.isInvertible()) return std::nullopt;
+    const Eigen::VectorXd step = lu.solve(G);
+    if (!step.allFinite()) return std::nullopt;
+    x -= step;
+    if (options.max_distance > 0 && (x - start).norm() > options.max_distance) return std::nullopt;
+    if (step.norm() <= options.tolerance * (1 + x.norm())) return x;
+  }
+  // As psi: a last iterate that satisfies the equations to rounding is accepted.
+  if (residual(as_span(x)) <= 1e-13 * (1 + x.squaredNorm()) && ((A * x - b).array().abs() <= 1e-13 * (1 + x.squaredNorm())).all())
+    return x;
+  return std::nullopt;
 }
 
 }  // namespace delcert::manifold

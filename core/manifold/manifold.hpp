@@ -78,6 +78,15 @@ class Manifold {
   // then alternating tangent projection and psi until x - z is normal at z. nullopt on failure.
   std::optional<Eigen::VectorXd> project(std::span<const double> x, const NewtonOptions& options = {}) const;
 
+  // A point of M equidistant from the m + 1 columns of `vertices` (N by m + 1): where the Voronoi
+  // flat of the simplex they span meets M, a vertex of the restricted Voronoi diagram when no other
+  // point is nearer. Newton from `start` on the N by N system F(x) = 0, (v_i - v_0)ᵀ (x - (v_i + v_0) / 2) = 0
+  // (i = 1..m). nullopt when Newton does not converge, the system becomes singular (the flat is
+  // tangent to M) or x moves farther than options.max_distance from start. Throws
+  // std::invalid_argument unless vertices has m + 1 columns of dimension N.
+  std::optional<Eigen::VectorXd> equidistant_point(const Eigen::MatrixXd& vertices, const Eigen::VectorXd& start,
+                                                   const NewtonOptions& options = {}) const;
+
  private:
   io::ManifoldSpec spec_;
   int m_ = 0, N_ = 0;

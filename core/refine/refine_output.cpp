@@ -51,6 +51,10 @@ const char* kPracticalRules[] = {
     "inconsistent: s in star(p) but not in star(q) for a vertex q; the paper's theorem rules this out only for tiny eps: "
     "insert Pick_valid in the picking region of s at the vertex p* whose star holds s with the largest R_p*(s) (as "
     "Boissonnat-Ghosh refine inconsistent configurations through their picking regions)",
+    "not_restricted (unless restricted_check is false): once no other rule applies, every m-simplex s of the complex "
+    "must have a point x of M equidistant from its vertices (Newton from c_p(s)) with every other point farther than "
+    "r^2 (1 + 1e-9) + delta0^2 (eps(p)/9)^2: otherwise insert x (if it lies in s's Delaunay ball at p) or Pick_valid "
+    "for s at p, so that Del_TM equals the restricted Delaunay complex",
     "cosph uses the bound delta0^2 max(L(q*s), eps/9)^2 and counts points on or inside the ball: an empty cosph then "
     "implies the claimed delta-check^2 = delta0^2 (eps/9)^2 even where the input is denser than eps/9",
     "Pick_valid rejects candidates closer than eps/9 to a point (the sparsity invariant is enforced, not inferred) and "
@@ -164,7 +168,8 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                      {"max_points", p.max_points},
                      {"max_inserted", cap(p.max_inserted)},
                      {"max_rounds", cap(p.max_rounds)},
-                     {"pick_attempts", p.pick_attempts}};
+                     {"pick_attempts", p.pick_attempts},
+                     {"restricted_check", p.mode == RefineMode::practical && p.restricted_check}};
   {
     const HypothesesReport& h = r.hypotheses;
     json hs = json::array();
@@ -206,7 +211,7 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
   json rules = json::object();
   const bool paper = p.mode == RefineMode::paper;
   for (Rule rule : kRules) {
-    if (paper && (rule == Rule::unprotected || rule == Rule::inconsistent)) continue;
+    if (paper && (rule == Rule::unprotected || rule == Rule::inconsistent || rule == Rule::not_restricted)) continue;
     const RuleStats& s = r.rules[rule];
     rules[to_string(rule)] = {{"inserted", s.inserted},
                               {"applied", s.applied},

@@ -33,6 +33,7 @@ const char* to_string(Rule r) {
     case Rule::bad_cosph: return "bad_cosph";
     case Rule::unprotected: return "unprotected";
     case Rule::inconsistent: return "inconsistent";
+    case Rule::not_restricted: return "not_restricted";
   }
   return "?";
 }
@@ -108,6 +109,7 @@ struct Configuration {
   double radius2 = 0;
   std::vector<double> centre;
   bool open = false;  // practical mode: p's star is open (an unbounded power cell, R = ∞); no cell
+  std::vector<double> target;  // not_restricted: the point of M equidistant from the cell's vertices (empty: none found)
 };
 
 bool canonical_less(const Configuration& a, const Configuration& b) {
@@ -171,6 +173,8 @@ class Refiner {
   bool applies(const Configuration& c, const Eigen::VectorXd& x) const;
 
   std::vector<Configuration> configurations_of(std::size_t p) const;
+  bool restricted_with_margin(std::size_t p, std::span<const int> cell, std::span<const double> centre, double radius2,
+                              std::vector<double>& target) const;
   void recompute_configurations(const std::vector<std::size_t>& which);
   void update_consistency(const std::vector<std::size_t>& changed);
   void set_mask(const CellKey& key, int bit, bool on);
@@ -204,6 +208,7 @@ class Refiner {
   std::set<CellKey> inconsistent_;
   double max_radius2_ = 0;
   std::size_t open_stars_ = 0;
+  bool restricted_phase_ = false;  // practical mode: the not_restricted rule is on (set once nothing else applied)
   // The sizing field (practical mode): sites and the local ε of every point.
   struct Site {
     std::vector<double> x;
@@ -290,12 +295,22 @@ std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
       make(Rule::bad_star, -1);
       continue;
     }
+    const std::size_t before = out.size();
     for (const CosphMember& mem : cosph_members(R_.points, index_, cell, st.centre(c), r2, cosph_options(p, r2))) {
       std::array<int, kMaxCell + 1> v;
       std::copy(cell.begin(), cell.end(), v.begin());
       v[cell.size()] = static_cast<int>(mem.q);
       const bool good = make_simplex(R_.points, std::span<const int>(v.data(), cell.size() + 1)).is_good(g);
       make(good ? Rule::unprotected : Rule::bad_cosph, static_cast<int>(mem.q));
+    }
+    // The restricted check, once on: a clean cell, tested once (at its smallest vertex; cells are
+    // sorted vertex lists, and a clean complex is consistent, so that vertex's star holds it).
+    if (restricted_phase_ && out.size() == before && cell[0] == static_cast<int>(p)) {
+      std::vector<double> target;
+      if (!restricted_with_margin(p, cell, st.centre(c), r2, target)) {
+        make(Rule::not_restricted, -1);
+        out.back().target = std::move(target);
+      }
     }
   }
   return out;
@@ -356,6 +371,37 @@ void Refiner::update_consistency(const std::vector<std::size_t>& changed) {
   }
 }
 
+// Whether the cell (an m-simplex of star(p) with centre c_p(σ) and radius² R², nothing else wrong
+// with it) is restricted Delaunay with a margin: Newton from c_p(σ) finds x ∈ M equidistant from
+// its vertices within 2R of c_p(σ) (`Manifold::equidistant_point`), on the selected component, and
+// every other point q has |x - q|² > r² (1 + 10⁻⁹) + δ0² (μ0 ε(p))², r = max_i |x - v_i|: the
+// restricted Voronoi vertex dual to σ exists and is protected like the tangential stars (the
+// protection the claims state). `target` is x when found. A simplex failing this is not in
+// Del_RM(P), or barely: its Delaunay ball on M holds another point (a flip of the tangential
+// complex at a curvature the tangent-space protection does not see), or its flat meets M far from
+// it or not at all. The certifier decides Del_TM = Del_RM exactly (check 13); this is the
+// producer's expectation, in doubles.
+bool Refiner::restricted_with_margin(std::size_t p, std::span<const int> cell, std::span<const double> centre,
+                                     double radius2, std::vector<double>& target) const {
+  Eigen::MatrixXd V(N_, static_cast<Eigen::Index>(cell.size()));
+  for (std::size_t i = 0; i < cell.size(); ++i)
+    V.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::VectorXd>(R_.points.point(cell[i]).data(), N_);
+  const Eigen::VectorXd start = Eigen::Map<const Eigen::VectorXd>(centre.data(), N_);
+  manifold::NewtonOptions options;
+  options.max_distance = 2 * std::sqrt(radius2);
+  const auto x = M_.equidistant_point(V, start, options);
+  if (!x || !M_.on_selected_component(manifold::as_span(*x))) return false;
+  target.assign(x->data(), x->data() + N_);
+  double r2 = 0;
+  for (Eigen::Index i = 0; i < V.cols(); ++i) r2 = std::max(r2, (*x - V.col(i)).squaredNorm());
+  const double floor = d_.delta0 * mu0_times(leps_[p]);
+  bool empty = true;
+  index_.for_each_in_ball(target, r2 * (1 + kMargin) + floor * floor, [&](std::size_t q, double) {
+    if (std::find(cell.begin(), cell.end(), static_cast<int>(q)) == cell.end()) empty = false;
+  });
+  return empty;
+}
+
 std::vector<Configuration> Refiner::inconsistent_configurations() const {
   std::vector<Configuration> out;
   const int k = m_ + 1;
@@ -404,6 +450,15 @@ bool Refiner::stale(const Configuration& c, std::size_t round_start) const {
 
 std::optional<Eigen::VectorXd> Refiner::produce(const Configuration& c, RuleStats& st) {
   if (c.open) return std::nullopt;  // no cell: shrink() aims at the open direction
+  if (c.rule == Rule::not_restricted) {
+    // The restricted Voronoi vertex itself (Chew's rule on M: it lies in σ's Delaunay ball on M, and
+    // near c_p(σ) in σ's tangential one), else a point of σ's picking region as for the other rules.
+    if (!c.target.empty()) {
+      Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(c.target.data(), N_);
+      if (applies(c, x)) return x;
+    }
+    return pick_valid(c, st);
+  }
   if (c.rule != Rule::big) return pick_valid(c, st);
   // Rule 1: ψ_p(c_p(σ)).
   const auto p = R_.points.point(c.p);
@@ -725,8 +780,20 @@ RefineResult Refiner::run() {
     }
     const bool big = counts[Rule::big] > 0;
     const bool rule2 = counts[Rule::bad_star] + counts[Rule::bad_cosph] > 0;
-    const bool practical_more = !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] > 0);
+    const bool practical_more =
+        !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] + counts[Rule::not_restricted] > 0);
     if (!big && !rule2 && !practical_more) {
+      if (!paper_ && P_.restricted_check && !restricted_phase_ && open_stars_ == 0) {
+        // Nothing else to do: turn the restricted check on, for every star now and for the stars
+        // each later round changes (configurations_of), and go on.
+        const auto t = Clock::now();
+        restricted_phase_ = true;
+        std::vector<std::size_t> all(R_.points.size());
+        for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+        recompute_configurations(all);
+        R_.configuration_seconds += seconds_since(t);
+        continue;
+      }
       if (open_stars_ > 0) R_.stop_reason = StopReason::stalled;
       break;
     }
@@ -753,6 +820,7 @@ RefineResult Refiner::run() {
       take(Rule::bad_cosph);
       if (!paper_) {
         take(Rule::unprotected);
+        take(Rule::not_restricted);
         auto inc = inconsistent_configurations();
         batch.insert(batch.end(), std::make_move_iterator(inc.begin()), std::make_move_iterator(inc.end()));
       }

@@ -23,12 +23,15 @@ namespace delcert::refine {
 enum class RefineMode { practical, paper };
 const char* to_string(RefineMode m);
 
-enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4 };
-inline constexpr int kNumRules = 5;
+// not_restricted (practical mode): an m-simplex of the complex whose point of M equidistant from its
+// vertices (its restricted Voronoi vertex) is missing or has another point nearer, so that it is not
+// in the restricted Delaunay complex with a margin (docs/refinement.md, "Restricted check").
+enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4, not_restricted = 5 };
+inline constexpr int kNumRules = 6;
 // Lipschitz slope of the practical mode's local ε (the sizing field; docs/refinement.md).
 inline constexpr double kSizingSlope = 0.5;
-inline constexpr std::array<Rule, kNumRules> kRules = {Rule::big, Rule::bad_star, Rule::bad_cosph, Rule::unprotected,
-                                                       Rule::inconsistent};
+inline constexpr std::array<Rule, kNumRules> kRules = {Rule::big,         Rule::bad_star,     Rule::bad_cosph,
+                                                       Rule::unprotected, Rule::inconsistent, Rule::not_restricted};
 const char* to_string(Rule r);
 
 // One T per rule, indexed by the rule.
@@ -63,6 +66,9 @@ struct RefineParameters {
   SizingField sizing;
   std::uint64_t seed = 1;
   int threads = 1;
+  // Practical mode: once no other rule applies, also refine the m-simplices that are not restricted
+  // Delaunay with a margin (Rule::not_restricted), so that the output's Del_TM equals its Del_RM.
+  bool restricted_check = true;
   // Caps: the run stops (not converged) when it would hold more than max_points points in all
   // (0: kDefaultMaxPoints), insert more than max_inserted points or start round max_rounds + 1
   // (0: no cap of that kind; every round inserts a point, so max_points bounds the rounds too).

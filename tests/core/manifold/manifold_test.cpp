@@ -4,6 +4,9 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
+#include <stdexcept>
+
 #include "core/sampling/sampling.hpp"
 #include "io/spec.hpp"
 #include "tests/test_support.hpp"
@@ -88,6 +91,34 @@ TEST_P(EveryBuiltin, ProjectFindsTheClosestPoint) {
   }
 }
 
+// m + 1 points of M around p (ψ_p of small tangent offsets): the point equidistant from them found
+// from their centroid is on M, equidistant to rounding, and near them.
+TEST_P(EveryBuiltin, EquidistantPointIsOnMAndEquidistant) {
+  const int m = manifold.intrinsic_dimension(), N = manifold.ambient_dimension();
+  auto ps = sample(30, 17);
+  sampling::Random rng(18);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    Eigen::Map<const Eigen::VectorXd> p(ps.point(i).data(), N);
+    auto f = manifold.frame(ps.point(i));
+    ASSERT_TRUE(f.has_value());
+    Eigen::MatrixXd V(N, m + 1);
+    for (int k = 0; k <= m; ++k) {
+      Eigen::VectorXd u(m);
+      for (int j = 0; j < m; ++j) u[j] = rng.uniform(-0.1, 0.1);
+      auto x = manifold.psi(ps.point(i), *f, p + f->tangent * u);
+      ASSERT_TRUE(x.has_value());
+      V.col(k) = *x;
+    }
+    const Eigen::VectorXd centroid = V.rowwise().mean();
+    auto x = manifold.equidistant_point(V, centroid);
+    if (!x) continue;  // a nearly degenerate simplex can make the flat nearly tangent
+    EXPECT_LT(manifold.residual(as_span(*x)), 1e-12);
+    const double r2 = (*x - V.col(0)).squaredNorm();
+    for (int k = 1; k <= m; ++k) EXPECT_NEAR((*x - V.col(k)).squaredNorm(), r2, 1e-12 * (1 + r2));
+    EXPECT_LT((*x - centroid).norm(), 1.0);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Builtins, EveryBuiltin,
                          ::testing::Values("sphere-2", "sphere-3", "clifford-torus-2", "clifford-torus-3",
                                            "torus-of-revolution", "so3"));
@@ -103,6 +134,27 @@ TEST(Manifold, PsiReportsFailureInsteadOfGarbage) {
   // The centre of the sphere is singular for the Jacobian.
   std::vector<double> origin{0, 0, 0};
   EXPECT_FALSE(sphere.frame(origin).has_value());
+}
+
+// Known answers on the unit sphere: the points equidistant from e1, e2, e3 are ±(1, 1, 1)/√3, and
+// Newton finds the one on its side; the flat x = y = 2 of (0,0,0), (4,0,0), (0,4,0) misses the sphere.
+TEST(Manifold, EquidistantPointKnownAnswers) {
+  Manifold sphere(io::read_spec("builtin:sphere-2"));
+  Eigen::MatrixXd V = Eigen::MatrixXd::Identity(3, 3);
+  const Eigen::Vector3d n = Eigen::Vector3d::Ones() / std::sqrt(3.0);
+  auto x = sphere.equidistant_point(V, Eigen::Vector3d(0.3, 0.3, 0.3));
+  ASSERT_TRUE(x.has_value());
+  EXPECT_LT((*x - n).norm(), 1e-14);
+  x = sphere.equidistant_point(V, Eigen::Vector3d(-0.4, -0.5, -0.6));
+  ASSERT_TRUE(x.has_value());
+  EXPECT_LT((*x + n).norm(), 1e-14);
+  NewtonOptions near;
+  near.max_distance = 0.1;  // the solution is 0.42 away: refused
+  EXPECT_FALSE(sphere.equidistant_point(V, Eigen::Vector3d(0.3, 0.3, 0.3), near).has_value());
+  Eigen::MatrixXd W(3, 3);
+  W << 0, 4, 0, 0, 0, 4, 0, 0, 0;
+  EXPECT_FALSE(sphere.equidistant_point(W, Eigen::Vector3d(2, 2, 0)).has_value());
+  EXPECT_THROW(sphere.equidistant_point(Eigen::MatrixXd::Identity(3, 2), Eigen::Vector3d::Zero()), std::invalid_argument);
 }
 
 TEST(Manifold, GenericSpecSamplesByProjection) {

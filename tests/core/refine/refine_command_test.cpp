@@ -70,6 +70,8 @@ TEST(RefineCommand, WritesFourFilesDeterministically) {
   EXPECT_EQ(report["final"]["inconsistent_stars"], 0);
   EXPECT_EQ(report["sparsity"]["violations"], 0);
   EXPECT_TRUE(report["rules"].contains("inconsistent"));
+  EXPECT_TRUE(report["rules"].contains("not_restricted"));
+  EXPECT_EQ(report["parameters"]["restricted_check"], true);
 
   auto claims = nlohmann::json::parse(slurp(dir.file("a/claims.json")));
   EXPECT_EQ(claims["format"], "delcert-claims v2");
@@ -96,6 +98,8 @@ TEST(RefineCommand, PaperModeReportsTheHypotheses) {
   EXPECT_TRUE(report["hypotheses"]["max_eps"].is_number());
   EXPECT_FALSE(report.contains("practical_rules"));
   EXPECT_FALSE(report["rules"].contains("inconsistent"));
+  EXPECT_FALSE(report["rules"].contains("not_restricted"));
+  EXPECT_EQ(report["parameters"]["restricted_check"], false);  // Algorithm 1 has no such rule
 }
 
 TEST(RefineCommand, CapHitExitsFourWithPartialOutputMarked) {
@@ -171,7 +175,7 @@ TEST(RefineCommand, CertifierCertifiesTheClaims) {
     std::string manifold = std::regex_replace(std::string(args), std::regex(" --eps.*"), "");
     auto c = run(binary("delcert-certify") + " " + manifold + " --points " + dir.file("o/points.txt") + " --complex " +
                  dir.file("o/complex.txt") + " --claims " + dir.file("o/claims.json") + " --out " + dir.file("cert.json"));
-    EXPECT_TRUE(c.status == 0 || c.status == 1) << args << "\n" << c.output;  // check 13 may be REFUTED
+    EXPECT_TRUE(c.status == 0 || c.status == 1) << args << "\n" << c.output;  // check 15 may be REFUTED
     test::expect_refined_certificate(nlohmann::json::parse(test::slurp(dir.file("cert.json"))),
                                      io::read_points(dir.file("o/points.txt")));
   }

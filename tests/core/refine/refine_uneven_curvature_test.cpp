@@ -4,8 +4,9 @@
 // mode shrank ε locally, `delcert refine` stopped "stalled" (exit 4) on every one of them (and
 // the ellipsoid 8-1-1 did not even start: its ε-net had 3 points). Each must now converge, and its
 // output must be certified with its own claims (refined_certificate.hpp: every claim and every
-// check of Del_TM CERTIFIED, Del_RM and the covering radius CERTIFIED, Del_TM = Del_RM decided
-// with witnesses that re-check).
+// check of Del_TM CERTIFIED, Del_RM and the covering radius CERTIFIED, and Del_TM = Del_RM
+// CERTIFIED: before the not_restricted rule, check 13 was REFUTED on every one of them at seed 1,
+// by 2-8 flipped pairs of simplices).
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -53,7 +54,7 @@ TEST_P(RefineUnevenCurvature, ConvergesFromACoarseEpsAndIsCertified) {
 
   // The genus-2 tube's certified restricted Voronoi diagram takes ~20 s on one core (10^5 boxes
   // without a reach), so its checks 11-13 are skipped here as for SO(3) in
-  // refine_then_certify_test.cpp; with them it was measured CERTIFIED (check 13 REFUTED, as below).
+  // refine_then_certify_test.cpp; with them, checks 1-13 were measured CERTIFIED at seeds 1, 2 and 3.
   const std::string skip = c.restricted ? "" : " --skip-restricted";
   const test::RefinedRun cert = test::certify_refined_output(spec, out, dir.file("certificate.json"), !skip.empty());
   const auto& certificate = cert.certificate;
@@ -71,6 +72,39 @@ INSTANTIATE_TEST_SUITE_P(Family, RefineUnevenCurvature,
                            for (char& ch : n) ch = ch == '-' ? '_' : ch;
                            return n;
                          });
+
+// The not_restricted rule is what makes Del_TM equal Del_RM here: without it (--no-restricted-check)
+// the 4-2-1 ellipsoid's output at seed 1 has flipped pairs (check 13 REFUTED with restricted Voronoi
+// vertex witnesses that re-check); with it the same run inserts a few points more and check 13 is
+// CERTIFIED (the parametrized test above).
+TEST(RefineUnevenCurvature, WithoutTheRestrictedRuleDelTMAndDelRMDiffer) {
+  test::TempDir dir("refine-uneven-nr");
+  const std::string spec = fixture("specs/uneven/ellipsoid-4-2-1.json");
+  for (const bool check : {false, true}) {
+    const std::string out = dir.file(check ? "with" : "without");
+    auto refine = run(binary("delcert") + " refine --manifold " + spec + " --eps 2.48 --seed 1 --out " + out +
+                      (check ? "" : " --no-restricted-check"));
+    ASSERT_EQ(refine.status, 0) << refine.output;
+    auto report = nlohmann::json::parse(test::slurp(out + "/report.json"));
+    EXPECT_EQ(report.at("parameters").at("restricted_check"), check);
+    const std::size_t inserted = report.at("rules").at("not_restricted").at("inserted");
+    if (check) {
+      EXPECT_GT(inserted, 0u);
+      continue;  // certified in full by RefineUnevenCurvature.ConvergesFromACoarseEpsAndIsCertified
+    }
+    EXPECT_EQ(inserted, 0u);
+    auto cert = run(binary("delcert-certify") + " --manifold " + spec + " --points " + out + "/points.txt --complex " +
+                    out + "/complex.txt --claims " + out + "/claims.json --out " + dir.file("c.json"));
+    EXPECT_EQ(cert.status, 1) << cert.output;
+    const auto certificate = nlohmann::json::parse(test::slurp(dir.file("c.json")));
+    const auto& check13 = certificate.at("checks").at(12);
+    EXPECT_EQ(check13.at("name"), "tangential_equals_restricted");
+    EXPECT_EQ(check13.at("verdict"), "REFUTED");
+    bool vertex_witness = false;
+    for (const auto& w : check13.at("witnesses")) vertex_witness |= w.at("kind") == "restricted_voronoi_vertex";
+    EXPECT_TRUE(vertex_witness);
+  }
+}
 
 // Same inputs and seed, same bytes (the local ε and the open-star directions are seeded).
 TEST(RefineUnevenCurvature, LocalEpsIsDeterministic) {
