@@ -279,6 +279,14 @@ def test_refine_shrinks_eps_locally_from_a_coarse_eps():
     assert not capped["converged"]
     assert capped["report"]["stop_reason"] == "max_points"
     assert len(capped["points"]) == 40
+    # restricted_check=False is --no-restricted-check: the not_restricted rule (3 points here at
+    # seed 1) is off, and the report says so.
+    assert r["report"]["parameters"]["restricted_check"] is True
+    assert r["report"]["rules"]["not_restricted"]["inserted"] > 0
+    off = delcert.refine(spec, eps="4.22", seed=1, threads=THREADS, restricted_check=False)
+    assert off["report"]["parameters"]["restricted_check"] is False
+    assert off["report"]["rules"]["not_restricted"]["inserted"] == 0
+    assert len(off["points"]) < len(r["points"])
 
 
 def test_bad_sizing_options_are_refused_as_by_the_command(tmp_path):
