@@ -175,7 +175,9 @@ TEST(RefineCommand, CertifierCertifiesTheClaims) {
     std::string manifold = std::regex_replace(std::string(args), std::regex(" --eps.*"), "");
     auto c = run(binary("delcert-certify") + " " + manifold + " --points " + dir.file("o/points.txt") + " --complex " +
                  dir.file("o/complex.txt") + " --claims " + dir.file("o/claims.json") + " --out " + dir.file("cert.json"));
-    EXPECT_TRUE(c.status == 0 || c.status == 1) << args << "\n" << c.output;  // check 15 may be REFUTED
+    // 1: check 15 may be REFUTED; 3: Del_M not computed (the torus of revolution declares no metric).
+    // expect_refined_certificate holds every other check to CERTIFIED, check 13 included.
+    EXPECT_TRUE(c.status == 0 || c.status == 1 || c.status == 3) << args << "\n" << c.output;
     test::expect_refined_certificate(nlohmann::json::parse(test::slurp(dir.file("cert.json"))),
                                      io::read_points(dir.file("o/points.txt")));
   }
