@@ -12,12 +12,13 @@
 //
 //   bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120]
 //                [--max-perturb 0.01] [--seed 1] [--reps 1] [--no-gudhi] [--out-dir DIR]
-//                [--gamma0 0.1,0.15,0.2,0.3] [--time-limit S] [--no-restricted-check]
+//                [--gamma0 0.1,0.15,0.2,0.3] [--time-limit S] [--no-restricted-check] [--look-ahead]
 // With several Γ0 (issue 15: the thickness trade-off), delcert runs once per value ("gamma0_sweep":
 // points added, time, and the distribution of the thickness Υ of the m-simplices); the first value
 // is the one compared with GUDHI. --time-limit stops a run (marked, not reproducible).
 // --no-restricted-check refines without the not_restricted rule (docs/refinement.md, "Restricted
-// check"), to measure what the rule costs.
+// check"), to measure what the rule costs; --look-ahead turns on Pick_valid's look-ahead
+// (docs/refinement.md, "Look-ahead"), to measure what it saves.
 // With --reps R, delcert runs R times (the outputs are identical; the JSON gives the median
 // total time and every run's); GUDHI runs once (its time is set by the limit).
 //
@@ -175,9 +176,11 @@ json certify_output(const std::string& manifold_source, const std::string& dir, 
 
 json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int threads, std::uint64_t seed, const std::string& out_dir,
                  const std::string& name, const std::string& gamma0, double time_limit, bool certify_it,
-                 const refine::SizingField* sizing = nullptr, const std::string& eps = {}, bool restricted_check = true) {
+                 const refine::SizingField* sizing = nullptr, const std::string& eps = {}, bool restricted_check = true,
+                 bool look_ahead = false) {
   refine::RefineParameters p;
   p.restricted_check = restricted_check;
+  p.look_ahead = look_ahead;
   if (sizing) p.sizing = *sizing;
   if (!eps.empty()) p.constants.eps = refine::ExactParameter::parse(eps);
   p.threads = threads;
@@ -193,6 +196,7 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
                      {"eps", r.parameters.constants.eps.value().text},
                      {"sizing", refine::to_string(r.parameters.sizing.kind)},
                      {"restricted_check", r.parameters.restricted_check},
+                     {"look_ahead", r.parameters.look_ahead},
                      {"gamma0", used.gamma0},
                      {"alpha", used.alpha},
                      {"beta", used.beta},
@@ -213,6 +217,7 @@ json run_delcert(const manifold::Manifold& manifold, const io::PointSet& ps, int
                                       {"seconds", r.rules[rule].seconds},
                                       {"candidates", r.rules[rule].candidates},
                                       {"rejected_hit", r.rules[rule].rejected_hit},
+                                      {"rejected_look_ahead", r.rules[rule].rejected_look_ahead},
                                       {"fallbacks", r.rules[rule].fallbacks}};
   j["rules"] = rules;
   j["time_seconds"] = {{"stars", r.star_seconds},
@@ -305,7 +310,7 @@ int main(int argc, char** argv) {
   bool gudhi = true;
   std::string out_dir, gamma0_list = "0.1";
   double time_limit = 0;
-  bool certify_outputs = false, restricted_check = true;
+  bool certify_outputs = false, restricted_check = true, look_ahead = false;
   std::vector<std::string> sizing_items;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -325,11 +330,12 @@ int main(int argc, char** argv) {
     else if (a == "--time-limit") time_limit = std::stod(next());
     else if (a == "--certify") certify_outputs = true;
     else if (a == "--no-restricted-check") restricted_check = false;
+    else if (a == "--look-ahead") look_ahead = true;
     else if (a == "--sizing") sizing_items.push_back(next());
     else {
       std::cerr << "usage: bench_refine [--cases t3:10000,so3:10000] [--threads 2] [--gudhi-time-limit 120] "
                    "[--max-perturb 0.01] [--seed 1] [--no-gudhi] [--out-dir DIR] [--gamma0 0.1,0.15,...] "
-                   "[--time-limit S] [--certify] [--no-restricted-check] [--sizing SPEC:EPS[:FLOOR[:C]]] ...\n";
+                   "[--time-limit S] [--certify] [--no-restricted-check] [--look-ahead] [--sizing SPEC:EPS[:FLOOR[:C]]] ...\n";
       return 2;
     }
   }
@@ -369,7 +375,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < reps; ++r) {
         json one = run_delcert(manifold, ps, threads, seed, r == 0 ? out_dir : std::string(),
                                c.manifold + "-" + std::to_string(c.count) + (sweep.empty() ? "" : "-gamma0-" + g), g,
-                               time_limit, certify_outputs && r == 0, nullptr, {}, restricted_check);
+                               time_limit, certify_outputs && r == 0, nullptr, {}, restricted_check, look_ahead);
         totals.push_back(one["time_seconds"]["total"].get<double>());
         if (r == 0) d = one;
         else if (one["points_added"] != d["points_added"]) d["warning"] = "runs differ: the refiner is not deterministic";

@@ -60,7 +60,7 @@ struct RefineArgs {
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
-  bool no_restricted_check = false;
+  bool no_restricted_check = false, look_ahead = false;
 };
 
 // "round 12: 3456 points (+456); pending 3 big, 40 inconsistent": the rules with configurations
@@ -123,6 +123,7 @@ int run_refine(const RefineArgs& a) {
   }
   params.seed = a.seed;
   params.restricted_check = !a.no_restricted_check;
+  params.look_ahead = a.look_ahead;
   params.threads = a.threads;
   params.max_points = a.max_points;
   params.max_inserted = a.max_inserted;
@@ -271,6 +272,9 @@ Command add_refine_command(CLI::App& app) {
   sub->add_flag("--no-restricted-check", args->no_restricted_check,
                 "practical mode: do not refine the simplices that are not restricted Delaunay with a margin (rule "
                 "not_restricted); faster, but Del_TM may then differ from Del_RM (certifier check 13)");
+  sub->add_flag("--look-ahead", args->look_ahead,
+                "practical mode: Pick_valid also rejects candidates whose own star would be open, big or Gamma0-bad "
+                "(computed before inserting them; docs/refinement.md, \"Look-ahead\")");
   sub->add_option("--out", args->out, "output directory (created if missing)")->required();
   sub->add_option("--mesh-out", args->mesh_out, kMeshOutHelp);
   return {sub, [args] { return run_refine(*args); }};

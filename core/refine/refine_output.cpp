@@ -169,7 +169,8 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                      {"max_inserted", cap(p.max_inserted)},
                      {"max_rounds", cap(p.max_rounds)},
                      {"pick_attempts", p.pick_attempts},
-                     {"restricted_check", p.mode == RefineMode::practical && p.restricted_check}};
+                     {"restricted_check", p.mode == RefineMode::practical && p.restricted_check},
+                     {"look_ahead", p.mode == RefineMode::practical && p.look_ahead}};
   {
     const HypothesesReport& h = r.hypotheses;
     json hs = json::array();
@@ -219,6 +220,7 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                               {"candidates", s.candidates},
                               {"rejected_hit", s.rejected_hit},
                               {"rejected_sparse", s.rejected_sparse},
+                              {"rejected_look_ahead", s.rejected_look_ahead},
                               {"psi_failures", s.psi_failures},
                               {"fallbacks", s.fallbacks},
                               {"failures", s.failures},

@@ -183,6 +183,7 @@ class Refiner {
   bool stale(const Configuration& c, std::size_t round_start) const;
   std::optional<Eigen::VectorXd> produce(const Configuration& c, RuleStats& st);
   std::optional<Eigen::VectorXd> pick_valid(const Configuration& c, RuleStats& st);
+  bool look_ahead_ok(const Eigen::VectorXd& x) const;
   bool insert(const Eigen::VectorXd& x, Rule rule);
   bool new_star_is_big(std::size_t x);
   std::vector<std::size_t> cosph_affected(std::size_t round_start) const;
@@ -504,24 +505,27 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
   struct Drawn {
     std::optional<Eigen::VectorXd> x;
     double d2 = 0;
-    bool sparse_ok = false, hit = false;
+    bool sparse_ok = false, hit = false, ahead_bad = false;
     sampling::Random after;
   };
   std::vector<Drawn> batch;
+  const bool look_ahead = P_.look_ahead && !paper_;
   for (int attempt = 0, size = 1; attempt < P_.pick_attempts; attempt += size, size = std::min(2 * size, 32)) {
     size = std::min(size, P_.pick_attempts - attempt);
     batch.clear();
     sampling::Random gen = *rng_;
     for (int j = 0; j < size; ++j) {
-      Drawn d{pick_in_region(M_, p, *frame, region, gen, Rp), 0, false, false, gen};  // (braces: in order, so `after` is the state after the draw)
+      Drawn d{pick_in_region(M_, p, *frame, region, gen, Rp), 0, false, false, false, gen};  // (braces: in order, so `after` is the state after the draw)
       if (d.x) d.d2 = index_.nearest_distance2(manifold::as_span(*d.x)), d.sparse_ok = paper_ || d.d2 > sparse2;
       batch.push_back(std::move(d));
     }
     support::parallel_chunks(batch.size(), P_.threads, 1, [&](int) {
       return [&](std::size_t b, std::size_t e) {
         for (std::size_t j = b; j < e; ++j)
-          if (batch[j].x && batch[j].d2 > 0 && batch[j].sparse_ok)
+          if (batch[j].x && batch[j].d2 > 0 && batch[j].sparse_ok) {
             batch[j].hit = find_hitting_set(manifold::as_span(*batch[j].x), R_.points, index_, hq).has_value();
+            if (!batch[j].hit && look_ahead) batch[j].ahead_bad = !look_ahead_ok(*batch[j].x);
+          }
       };
     });
     for (Drawn& d : batch) {
@@ -532,11 +536,14 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
       }
       if (!(d.d2 > 0)) continue;  // on an existing point
       if (d.sparse_ok) {
-        if (!d.hit) {  // a good point
+        if (!d.hit && !d.ahead_bad) {  // a good point
           *rng_ = d.after;
           return std::move(d.x);
         }
-        ++st.rejected_hit;
+        if (d.hit)
+          ++st.rejected_hit;
+        else
+          ++st.rejected_look_ahead;
       } else {
         ++st.rejected_sparse;
       }
@@ -550,6 +557,30 @@ std::optional<Eigen::VectorXd> Refiner::pick_valid(const Configuration& c, RuleS
   }
   if (best) ++st.fallbacks;
   return best;
+}
+
+// The look-ahead (practical mode, RefineParameters::look_ahead): x's own star as it would be after
+// inserting x (tangential::tentative_star, with x's frame) is closed, and every cell is small at the
+// local ε(x) and Γ0-good, so that x brings no Rule 1 or bad_star configuration of its own.
+bool Refiner::look_ahead_ok(const Eigen::VectorXd& x) const {
+  const auto xs = manifold::as_span(x);
+  const auto frame = M_.frame(xs);
+  if (!frame) return false;
+  const tangential::Star st = tangential::tentative_star(
+      R_.points, planes_, index_, xs, std::span<const double>(frame->tangent.data(), static_cast<std::size_t>(N_ * m_)));
+  if (!st.closed) return false;
+  const double le = local_eps_at(xs);
+  const double g = gamma_check();
+  const int self = static_cast<int>(R_.points.size());
+  for (std::size_t c = 0; c < st.size(); ++c) {
+    if (st.radii2[c] >= le * le * (1 - 2 * kMargin)) return false;
+    std::array<int, kMaxCell> others{};
+    int k = 0;
+    for (int v : st.cell(c))
+      if (v != self) others[k++] = v;
+    if (!make_simplex(xs, R_.points, std::span<const int>(others.data(), k)).is_good(g)) return false;
+  }
+  return true;
 }
 
 bool Refiner::insert(const Eigen::VectorXd& x, Rule rule) {

@@ -69,6 +69,10 @@ struct RefineParameters {
   // Practical mode: once no other rule applies, also refine the m-simplices that are not restricted
   // Delaunay with a margin (Rule::not_restricted), so that the output's Del_TM equals its Del_RM.
   bool restricted_check = true;
+  // Practical mode: Pick_valid also rejects a candidate whose own star, computed before inserting
+  // it (tangential::tentative_star), would be open, hold a cell with R >= ε(x) or a Γ0-bad cell
+  // (docs/refinement.md, "Look-ahead"). Off by default: see there for what it measured.
+  bool look_ahead = false;
   // Caps: the run stops (not converged) when it would hold more than max_points points in all
   // (0: kDefaultMaxPoints), insert more than max_inserted points or start round max_rounds + 1
   // (0: no cap of that kind; every round inserts a point, so max_points bounds the rounds too).
@@ -95,6 +99,7 @@ struct RuleStats {
   std::size_t candidates = 0;        // Pick_valid candidates drawn
   std::size_t rejected_hit = 0;      // ... rejected because a hitting set exists
   std::size_t rejected_sparse = 0;   // ... rejected because closer than μ0 ε to a point (practical)
+  std::size_t rejected_look_ahead = 0;  // ... rejected because their tentative star is bad (look_ahead)
   std::size_t psi_failures = 0;      // ... where ψ_p failed
   std::size_t fallbacks = 0;         // configurations where Pick_valid gave up and took the best candidate
   std::size_t failures = 0;          // configurations where no point could be produced

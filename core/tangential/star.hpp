@@ -93,6 +93,15 @@ struct StarStats {
 StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                         std::span<const std::size_t> which, std::vector<Star>& stars, const StarOptions& options = {});
 
+// The star a point x would have if it were appended to `points` (index points.size()), computed
+// as compute_stars computes every star (same certified signs, same fallback, same bits as
+// compute_stars after the append); nothing is inserted. The refiner's look-ahead. `basis` is x's
+// tangent basis (N*m doubles, column-major, orthonormal, as TangentPlanes::basis); `planes` gives
+// m only and need not cover the points. Throws std::invalid_argument on mismatched sizes, an
+// unsupported m, or when x is one of the points.
+Star tentative_star(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
+                    std::span<const double> x, std::span<const double> basis);
+
 // The power centre of the simplex `cell` (sorted global indices, containing p) in T_p, in
 // ambient coordinates, as computed for star(p) (bit-identical; docs/design.md §3.2). Returns false when
 // the projected simplex is degenerate (no unique centre).

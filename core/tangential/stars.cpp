@@ -81,6 +81,20 @@ Neighbourhood::Neighbourhood(const io::PointSet& points, const TangentPlanes& pl
 
 void Neighbourhood::reset(std::size_t p) {
   p_ = p;
+  external_ = false;
+  centre_ = points_.point(p).data();
+  basis_ = planes_.basis(p).data();
+  k_ = 0;
+  exhausted_ = false;
+  local_.clear();
+  fetch(initial_k_);
+}
+
+void Neighbourhood::reset_external(std::span<const double> x, std::span<const double> basis) {
+  p_ = points_.size();
+  external_ = true;
+  centre_ = x.data();
+  basis_ = basis.data();
   k_ = 0;
   exhausted_ = false;
   local_.clear();
@@ -88,13 +102,14 @@ void Neighbourhood::reset(std::size_t p) {
 }
 
 void Neighbourhood::fetch(std::size_t k) {
-  const std::size_t n = points_.size();
-  k = std::min(k, n - 1);
+  const std::size_t others = external_ ? points_.size() : points_.size() - 1;  // the points other than p
+  k = std::min(k, others);
   k_ = k;
-  exhausted_ = k + 1 >= n;
-  index_.nearest(points_.point(p_), k + 1, found_);
-  const double* pp = points_.point(p_).data();
-  const double* basis = planes_.basis(p_).data();
+  exhausted_ = k >= others;
+  // p itself comes first among its own k + 1 nearest; an external point is not in the index.
+  index_.nearest(std::span<const double>(centre_, static_cast<std::size_t>(N_)), external_ ? k : k + 1, found_);
+  const double* pp = centre_;
+  const double* basis = basis_;
   std::size_t have = local_.size(), seen = 0;
   for (const auto& [d2, id] : found_) {
     if (id == p_) continue;
@@ -288,8 +303,8 @@ void finish_star(const Neighbourhood& nb, const LocalStar& ls, StarMethod method
   star.centres.resize(count * N);
   star.radii2.resize(count);
   star.max_radius2 = 0;
-  const double* pp = nb.points().point(p).data();
-  const double* basis = nb.planes().basis(p).data();
+  const double* pp = nb.centre_point();
+  const double* basis = nb.centre_basis();
   const double inv = 1.0 / nb.scale();  // exact: a power of two
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t c = order[k];
@@ -409,6 +424,46 @@ StarStats compute_stars(const io::PointSet& points, const TangentPlanes& planes,
     stats.max_radius2 = std::max(stats.max_radius2, star.max_radius2);
   }
   return stats;
+}
+
+namespace {
+
+template <int M>
+void external_star(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
+                   std::span<const double> x, std::span<const double> basis, Star& star) {
+  Neighbourhood nb(points, planes, index, default_initial_neighbours(M));
+  detail::PowerCell<M> cell;
+  LocalStar ls;
+  FinishScratch scratch;
+  nb.reset_external(x, basis);
+  StarMethod method = StarMethod::power_cell;
+  if (power_cell_star<M>(nb, cell, ls) != Outcome::done) {
+    detail::regular_triangulation_star(nb, ls);
+    method = StarMethod::regular_triangulation;
+  }
+  finish_star(nb, ls, method, scratch, star);
+}
+
+}  // namespace
+
+Star tentative_star(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
+                    std::span<const double> x, std::span<const double> basis) {
+  // As check_inputs, but the planes need not cover the points: only m is read from them (the
+  // refiner looks ahead in the middle of a round, before the round's points get their planes).
+  const int m = planes.intrinsic_dimension();
+  if (m < 2 || m > 4 || planes.ambient_dimension() != points.dimension || points.dimension > io::kMaxAmbientDimension)
+    throw std::invalid_argument("tentative_star: m must be 2, 3 or 4 and the planes' ambient dimension the points'");
+  if (index.size() != points.size() || (index.size() && index.dimension() != points.dimension))
+    throw std::invalid_argument("tentative_star: the neighbour index must hold exactly the points");
+  if (static_cast<int>(x.size()) != points.dimension || basis.size() != static_cast<std::size_t>(points.dimension * m))
+    throw std::invalid_argument("tentative_star: x needs N coordinates and its basis N*m entries");
+  Star star;
+  switch (m) {
+    case 2: external_star<2>(points, planes, index, x, basis, star); break;
+    case 3: external_star<3>(points, planes, index, x, basis, star); break;
+    default: external_star<4>(points, planes, index, x, basis, star); break;
+  }
+  return star;
 }
 
 bool power_centre(const io::PointSet& points, const TangentPlanes& planes, std::size_t p, std::span<const int> cell,

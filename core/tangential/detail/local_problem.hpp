@@ -45,12 +45,18 @@ class Neighbourhood {
 
   // Starts over for point p (fetches the first batch).
   void reset(std::size_t p);
+  // Starts over for a point x that is not in the set (a tentative star, tentative_star in
+  // star.hpp): its index is points.size(), its tangent basis `basis` (N*m, column-major); both
+  // spans must outlive the next reset.
+  void reset_external(std::span<const double> x, std::span<const double> basis);
   // Makes at least `count` neighbours available; false when there are fewer other points.
   bool ensure(std::size_t count);
   std::size_t available() const { return local_.size(); }
   const LocalPoint& operator[](std::size_t i) const { return local_[i]; }
 
   std::size_t centre() const { return p_; }
+  const double* centre_point() const { return centre_; }  // p's coordinates (N)
+  const double* centre_basis() const { return basis_; }   // its tangent basis (N*m, column-major)
   int m() const { return m_; }
   int N() const { return N_; }
   double scale() const { return scale_; }
@@ -65,7 +71,9 @@ class Neighbourhood {
   const spatial::NeighbourIndex& index_;
   int N_, m_;
   std::size_t initial_k_, p_ = 0, k_ = 0;
-  bool exhausted_ = false;
+  bool exhausted_ = false, external_ = false;
+  const double* centre_ = nullptr;
+  const double* basis_ = nullptr;
   double scale_ = 1;
   std::vector<LocalPoint> local_;
   std::vector<std::pair<double, std::size_t>> found_;

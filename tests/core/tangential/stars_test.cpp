@@ -75,6 +75,45 @@ void expect_same_as_reference(const Sample& s) {
   }
 }
 
+// The look-ahead star: tentative_star(points without x, x) is bit for bit the star compute_stars
+// gives x once appended, on every m (cells, centres, radii, closedness), and leaves nothing behind.
+void expect_tentative_equals_appended(const Sample& s) {
+  const std::size_t n = s.points.size() - 8;  // the last 8 points are the tentative ones, one at a time
+  io::PointSet head;
+  head.dimension = s.points.dimension;
+  head.coordinates.assign(s.points.coordinates.begin(), s.points.coordinates.begin() + n * s.points.dimension);
+  const spatial::NeighbourIndex head_index(head);
+  for (std::size_t x = n; x < s.points.size(); ++x) {
+    const Star tentative = tentative_star(head, s.planes, head_index, s.points.point(x), s.planes.basis(x));
+    io::PointSet with = head;
+    with.push_back(s.points.point(x));
+    TangentPlanes planes(s.planes.ambient_dimension(), s.planes.intrinsic_dimension());
+    for (std::size_t i = 0; i < n; ++i) planes.push_back(s.planes.basis(i));
+    planes.push_back(s.planes.basis(x));  // x's plane at its appended index n
+    const spatial::NeighbourIndex index(with);
+    std::vector<Star> stars;
+    const std::vector<std::size_t> which{n};
+    compute_stars(with, planes, index, which, stars);
+    const Star& appended = stars[n];
+    EXPECT_GT(tentative.size(), 0u);
+    EXPECT_EQ(tentative.cells, appended.cells) << "point " << x;
+    EXPECT_EQ(tentative.centres, appended.centres) << "point " << x;
+    EXPECT_EQ(tentative.radii2, appended.radii2) << "point " << x;
+    EXPECT_EQ(tentative.closed, appended.closed);
+    EXPECT_EQ(head_index.size(), n);
+  }
+  // x on one of the points is refused; so is a basis of the wrong size.
+  EXPECT_THROW(tentative_star(head, s.planes, head_index, head.point(0), s.planes.basis(0)), std::invalid_argument);
+  EXPECT_THROW(tentative_star(head, s.planes, head_index, s.points.point(n), s.planes.basis(n).subspan(1)),
+               std::invalid_argument);
+}
+
+TEST(TangentialStars, TentativeStarIsTheStarOnceAppended) {
+  expect_tentative_equals_appended(testing::builtin_sample("sphere-2", 300, 31));
+  expect_tentative_equals_appended(testing::builtin_sample("clifford-torus-3", 600, 32));
+  expect_tentative_equals_appended(testing::sphere_sample(4, 400, 33));
+}
+
 TEST(TangentialStars, SameAsRegularTriangulationSphere2) {
   expect_same_as_reference(testing::builtin_sample("sphere-2", 3000, 21));
 }
