@@ -207,6 +207,8 @@ int run_refine(const RefineArgs& a) {
   }
   std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", refine::to_string(result.stop_reason));
   if (!result.converged) std::printf("advice             %s (exit status 4)\n", refine::advice(result.stop_reason));
+  if (params.mode == refine::RefineMode::paper)
+    std::printf("assessment         %s\n", refine::paper_mode_assessment(result).c_str());
   std::printf("inconsistent       %zu simplices in %zu stars\n", f.inconsistent_simplices, f.inconsistent_stars);
   std::printf("min thickness      %.4g (min face ratio to Gamma0^j: %.4g)\n", f.min_thickness, f.min_face_thickness_ratio);
   std::printf("min protection     %.4g (ratio to delta-check^2: %.4g)\n", f.min_protection, f.min_protection_ratio);

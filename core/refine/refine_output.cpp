@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -145,6 +146,36 @@ ClaimsOutcome make_claims(const RefineResult& r) {
   return out;
 }
 
+std::string paper_mode_assessment(const RefineResult& r) {
+  if (r.parameters.mode != RefineMode::paper) return {};
+  const FinalMeasures& f = r.final;
+  const std::size_t inserted = r.points.size() - r.input_size;
+  std::string done = inserted == 0 ? "Algorithm 1 inserted nothing"
+                                   : "Algorithm 1 inserted " + std::to_string(inserted) + " point" + (inserted == 1 ? "" : "s");
+  if (!r.converged) return done + " and stopped on " + to_string(r.stop_reason) + " before its rules ran out";
+  std::vector<std::string> wrong;
+  if (f.open_stars > 0) wrong.push_back(std::to_string(f.open_stars) + " open stars");
+  if (f.inconsistent_simplices > 0)
+    wrong.push_back(std::to_string(f.inconsistent_simplices) + " inconsistent simplices in " +
+                    std::to_string(f.inconsistent_stars) + " stars");
+  if (!f.protected_claim) wrong.push_back("star simplices not protected by delta-check");
+  if (!f.all_good) wrong.push_back("Gamma0-bad faces");
+  if (wrong.empty()) return done + ": every rule ran out, and the complex is consistent, Gamma0-good and protected";
+  std::string list;
+  for (std::size_t i = 0; i < wrong.size(); ++i) list += (i ? (i + 1 == wrong.size() ? " and " : ", ") : "") + wrong[i];
+  std::string bound;
+  if (r.hypotheses.max_eps) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", *r.hypotheses.max_eps);
+    bound = std::string(" (the paper's hypotheses ask eps <= ") + text + ")";
+  }
+  else if (r.hypotheses.any_fails)
+    bound = " (some of the paper's hypotheses H0-H5 fail at these parameters)";
+  return done + " and has no rule left to apply, but the complex is not what the paper's theorem promises: " + list +
+         ". Its rules only see big cells and Gamma0-bad simplices; the theorem needs eps far smaller" + bound +
+         ". Use --mode practical, which also refines inconsistent and unprotected simplices";
+}
+
 std::string make_report(const RefineResult& r, const OutputContext& c, const ClaimsOutcome& claims) {
   const RefineParameters& p = r.parameters;  // as used
   const Constants& k = p.constants;
@@ -194,6 +225,7 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
   }
   j["converged"] = r.converged;
   j["stop_reason"] = to_string(r.stop_reason);
+  if (p.mode == RefineMode::paper) j["assessment"] = paper_mode_assessment(r);
   if (p.time_limit > 0) j["time_limit_seconds"] = p.time_limit;
   j["rounds"] = r.rounds;
   {

@@ -46,6 +46,12 @@ ClaimsOutcome make_claims(const RefineResult& result);
 
 std::string make_report(const RefineResult& result, const OutputContext& context, const ClaimsOutcome& claims);
 
+// Paper mode: one plain sentence on what Algorithm 1 achieved (report.json "assessment", the
+// summary's "assessment" line). At realistic ε its rules often run out with the complex still
+// inconsistent or unprotected, or before inserting anything, and the sentence says so, with the
+// hypothesis bound on ε and the advice to use the practical mode. Empty in practical mode.
+std::string paper_mode_assessment(const RefineResult& result);
+
 // Creates `dir` if missing and writes the four files atomically (claims and report last).
 void write_refine_output(const std::string& dir, const RefineResult& result, const OutputContext& context);
 

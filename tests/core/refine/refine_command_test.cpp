@@ -100,6 +100,33 @@ TEST(RefineCommand, PaperModeReportsTheHypotheses) {
   EXPECT_FALSE(report["rules"].contains("inconsistent"));
   EXPECT_FALSE(report["rules"].contains("not_restricted"));
   EXPECT_EQ(report["parameters"]["restricted_check"], false);  // Algorithm 1 has no such rule
+  // On this net Algorithm 1 ends with a good complex, and the assessment says so.
+  EXPECT_NE(report["assessment"].get<std::string>().find("every rule ran out, and the complex is consistent"),
+            std::string::npos)
+      << report["assessment"];
+  EXPECT_NE(r.output.find("assessment         Algorithm 1 inserted"), std::string::npos) << r.output;
+}
+
+// Issue 15 item 5: at a realistic eps on T^3, Algorithm 1's rules run out with the stars still
+// inconsistent; report.json and the summary say so plainly, with the paper's bound on eps and the
+// advice to use the practical mode (which the practical mode's report does not carry).
+TEST(RefineCommand, PaperModeSaysPlainlyWhenItsComplexIsNotTheTheorems) {
+  test::TempDir dir("refine-paper-t3");
+  auto r = run(binary("delcert") + " refine --manifold builtin:clifford-torus-3 --eps 0.6 --mode paper --out " +
+               dir.file("o"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto report = nlohmann::json::parse(slurp(dir.file("o/report.json")));
+  EXPECT_EQ(report["converged"], true);  // no rule left: Algorithm 1 is done
+  EXPECT_GT(report["final"]["inconsistent_simplices"].get<int>(), 0);
+  const std::string a = report["assessment"];
+  EXPECT_NE(a.find("not what the paper's theorem promises"), std::string::npos) << a;
+  EXPECT_NE(a.find("inconsistent simplices"), std::string::npos) << a;
+  EXPECT_NE(a.find("the paper's hypotheses ask eps <= "), std::string::npos) << a;
+  EXPECT_NE(a.find("Use --mode practical"), std::string::npos) << a;
+  EXPECT_NE(r.output.find("assessment         " + a), std::string::npos) << r.output;
+  auto practical = run(binary("delcert") + " refine --manifold builtin:sphere-2 --eps 0.3 --out " + dir.file("p"));
+  ASSERT_EQ(practical.status, 0) << practical.output;
+  EXPECT_FALSE(nlohmann::json::parse(slurp(dir.file("p/report.json"))).contains("assessment"));
 }
 
 TEST(RefineCommand, CapHitExitsFourWithPartialOutputMarked) {
