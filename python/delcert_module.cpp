@@ -297,7 +297,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
                        const py::object& delta0, std::uint64_t seed, int threads, std::size_t max_inserted,
                        std::size_t max_rounds, const py::object& out_arg, std::size_t max_points,
                        const std::string& sizing, const py::object& sizing_c_arg, const py::object& eps_floor_arg,
-                       bool restricted_check) {
+                       bool restricted_check, bool look_ahead) {
   const std::string source = path_text(manifold_arg);
   check_threads(threads);
   if (mode != "practical" && mode != "paper")
@@ -378,6 +378,7 @@ py::dict py_refine(const py::object& manifold_arg, const py::object& points_arg,
     params.max_rounds = max_rounds;
     params.max_points = max_points;
     params.restricted_check = restricted_check;
+    params.look_ahead = look_ahead;
     py::gil_scoped_release release;
     io::PointSet input;
     std::string input_text;
@@ -605,7 +606,7 @@ PYBIND11_MODULE(delcert, m) {
         py::arg("delta0") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0, py::arg("max_inserted") = 0,
         py::arg("max_rounds") = 0, py::arg("out") = py::none(), py::arg("max_points") = 0,
         py::arg("sizing") = "uniform", py::arg("sizing_c") = py::none(), py::arg("eps_floor") = py::none(),
-        py::arg("restricted_check") = true,
+        py::arg("restricted_check") = true, py::arg("look_ahead") = false,
         "Refines a sample of M until its tangential complex is thick, protected and consistent\n"
         "(`delcert refine`). Start from points (an array or a file path) or, without them, from an\n"
         "eps-net. The constants are exact: give them as str ('0.25', '1/4'), int or float. Returns a\n"
@@ -616,7 +617,8 @@ PYBIND11_MODULE(delcert, m) {
         "(default 1/2), eps_floor exact (default eps/10); sizing_c and eps_floor only with 'curvature'.\n"
         "With 'curvature' claims is version 3, the dict also has eps_per_point (float64 array (n,),\n"
         "eps(p) per point as the refiner used it, each <= eps), and out=DIR also writes eps.txt.\n"
-        "restricted_check=False is `--no-restricted-check` (no not_restricted rule).");
+        "restricted_check=False is `--no-restricted-check` (no not_restricted rule); look_ahead=True is\n"
+        "`--look-ahead`.");
 
   m.def("certify", &py_certify, py::arg("manifold"), py::arg("points"), py::arg("complex") = py::none(),
         py::arg("kind") = py::none(), py::arg("claims") = py::none(), py::arg("threads") = 0,

@@ -287,6 +287,9 @@ def test_refine_shrinks_eps_locally_from_a_coarse_eps():
     assert off["report"]["parameters"]["restricted_check"] is False
     assert off["report"]["rules"]["not_restricted"]["inserted"] == 0
     assert len(off["points"]) < len(r["points"])
+    ahead = delcert.refine(spec, eps="4.22", seed=1, threads=THREADS, look_ahead=True)
+    assert ahead["report"]["parameters"]["look_ahead"] is True
+    assert ahead["converged"]
 
 
 def test_bad_sizing_options_are_refused_as_by_the_command(tmp_path):
