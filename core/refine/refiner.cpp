@@ -210,6 +210,7 @@ class Refiner {
   double max_radius2_ = 0;
   std::size_t open_stars_ = 0;
   bool restricted_phase_ = false;  // practical mode: the not_restricted rule is on (set once nothing else applied)
+  std::size_t restricted_full_at_ = 0;  // the number of points at the last restricted check of every star
   // The sizing field (practical mode): sites and the local ε of every point.
   struct Site {
     std::vector<double> x;
@@ -814,11 +815,15 @@ RefineResult Refiner::run() {
     const bool practical_more =
         !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] + counts[Rule::not_restricted] > 0);
     if (!big && !rule2 && !practical_more) {
-      if (!paper_ && P_.restricted_check && !restricted_phase_ && open_stars_ == 0) {
+      if (!paper_ && P_.restricted_check && open_stars_ == 0 &&
+          (!restricted_phase_ || restricted_full_at_ != R_.points.size())) {
         // Nothing else to do: turn the restricted check on, for every star now and for the stars
-        // each later round changes (configurations_of), and go on.
+        // each later round changes (configurations_of), and go on. A point can enter a simplex's
+        // Delaunay ball on M without changing any star or cosph (a thin shell between that ball and
+        // the tangential one), so the run ends only after a check of every star finds nothing.
         const auto t = Clock::now();
         restricted_phase_ = true;
+        restricted_full_at_ = R_.points.size();
         std::vector<std::size_t> all(R_.points.size());
         for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
         recompute_configurations(all);
