@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
@@ -159,10 +160,16 @@ class Refiner {
     return o;
   }
   bool is_big(double radius2) const { return radius2 >= (paper_ ? eps2_ : eps2_ * (1 - 2 * kMargin)); }
-  // Practical mode: against the local ε(p) (= ε without sites).
-  bool is_big_at(std::size_t p, double radius2) const {
-    if (paper_) return is_big(radius2);
-    return radius2 >= leps_[p] * leps_[p] * (1 - 2 * kMargin);
+  // Practical mode: against a local ε (ε(p) = ε without sites).
+  static bool is_big_local(double local_eps, double radius2) {
+    return radius2 >= local_eps * local_eps * (1 - 2 * kMargin);
+  }
+  bool is_big_at(std::size_t p, double radius2) const { return paper_ ? is_big(radius2) : is_big_local(leps_[p], radius2); }
+  // 0, 1, ..., n - 1 for the n points.
+  std::vector<std::size_t> every_point() const {
+    std::vector<std::size_t> all(R_.points.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    return all;
   }
   double local_eps_at(std::span<const double> x) const;
   // The sizing field before any site: ε (uniform) or min(ε, max(floor, c / κ_max(x))) (curvature).
@@ -209,8 +216,9 @@ class Refiner {
   std::set<CellKey> inconsistent_;
   double max_radius2_ = 0;
   std::size_t open_stars_ = 0;
-  bool restricted_phase_ = false;  // practical mode: the not_restricted rule is on (set once nothing else applied)
-  std::size_t restricted_full_at_ = 0;  // the number of points at the last restricted check of every star
+  // Practical mode, the not_restricted rule: 0 while it is off (until nothing else applies), then
+  // the number of points at the last restricted check of every star.
+  std::size_t restricted_full_at_ = 0;
   // The sizing field (practical mode): sites and the local ε of every point.
   struct Site {
     std::vector<double> x;
@@ -307,7 +315,7 @@ std::vector<Configuration> Refiner::configurations_of(std::size_t p) const {
     }
     // The restricted check, once on: a clean cell, tested once (at its smallest vertex; cells are
     // sorted vertex lists, and a clean complex is consistent, so that vertex's star holds it).
-    if (restricted_phase_ && out.size() == before && cell[0] == static_cast<int>(p)) {
+    if (restricted_full_at_ > 0 && out.size() == before && cell[0] == static_cast<int>(p)) {
       std::vector<double> target;
       if (!restricted_with_margin(p, cell, st.centre(c), r2, target)) {
         make(Rule::not_restricted, -1);
@@ -574,7 +582,7 @@ bool Refiner::look_ahead_ok(const Eigen::VectorXd& x) const {
   const double g = gamma_check();
   const int self = static_cast<int>(R_.points.size());
   for (std::size_t c = 0; c < st.size(); ++c) {
-    if (st.radii2[c] >= le * le * (1 - 2 * kMargin)) return false;
+    if (is_big_local(le, st.radii2[c])) return false;
     std::array<int, kMaxCell> others{};
     int k = 0;
     for (int v : st.cell(c))
@@ -778,8 +786,7 @@ RefineResult Refiner::run() {
   index_ = spatial::NeighbourIndex(R_.points);
   {
     const auto t = Clock::now();
-    std::vector<std::size_t> all(R_.points.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    const std::vector<std::size_t> all = every_point();
     update_consistency(all);
     recompute_configurations(all);
     R_.configuration_seconds += seconds_since(t);
@@ -815,18 +822,14 @@ RefineResult Refiner::run() {
     const bool practical_more =
         !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] + counts[Rule::not_restricted] > 0);
     if (!big && !rule2 && !practical_more) {
-      if (!paper_ && P_.restricted_check && open_stars_ == 0 &&
-          (!restricted_phase_ || restricted_full_at_ != R_.points.size())) {
+      if (!paper_ && P_.restricted_check && open_stars_ == 0 && restricted_full_at_ != R_.points.size()) {
         // Nothing else to do: turn the restricted check on, for every star now and for the stars
         // each later round changes (configurations_of), and go on. A point can enter a simplex's
         // Delaunay ball on M without changing any star or cosph (a thin shell between that ball and
         // the tangential one), so the run ends only after a check of every star finds nothing.
         const auto t = Clock::now();
-        restricted_phase_ = true;
         restricted_full_at_ = R_.points.size();
-        std::vector<std::size_t> all(R_.points.size());
-        for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-        recompute_configurations(all);
+        recompute_configurations(every_point());
         R_.configuration_seconds += seconds_since(t);
         continue;
       }

@@ -79,22 +79,17 @@ Neighbourhood::Neighbourhood(const io::PointSet& points, const TangentPlanes& pl
     : points_(points), planes_(planes), index_(index), N_(points.dimension), m_(planes.intrinsic_dimension()),
       initial_k_(std::max<std::size_t>(initial_k, 1)) {}
 
-void Neighbourhood::reset(std::size_t p) {
-  p_ = p;
-  external_ = false;
-  centre_ = points_.point(p).data();
-  basis_ = planes_.basis(p).data();
-  k_ = 0;
-  exhausted_ = false;
-  local_.clear();
-  fetch(initial_k_);
-}
+void Neighbourhood::reset(std::size_t p) { restart(p, false, points_.point(p).data(), planes_.basis(p).data()); }
 
 void Neighbourhood::reset_external(std::span<const double> x, std::span<const double> basis) {
-  p_ = points_.size();
-  external_ = true;
-  centre_ = x.data();
-  basis_ = basis.data();
+  restart(points_.size(), true, x.data(), basis.data());
+}
+
+void Neighbourhood::restart(std::size_t p, bool external, const double* centre, const double* basis) {
+  p_ = p;
+  external_ = external;
+  centre_ = centre;
+  basis_ = basis;
   k_ = 0;
   exhausted_ = false;
   local_.clear();
@@ -326,6 +321,19 @@ void finish_star(const Neighbourhood& nb, const LocalStar& ls, StarMethod method
   }
 }
 
+// The star of the point `nb` was last reset to: the power-cell clipping, or CGAL's regular
+// triangulation where a sign is uncertain (always, under StarPath::regular_triangulation).
+template <int M>
+void one_star(Neighbourhood& nb, detail::PowerCell<M>& cell, LocalStar& ls, FinishScratch& scratch, StarPath path,
+              Star& star) {
+  StarMethod method = StarMethod::power_cell;
+  if (path != StarPath::automatic || power_cell_star<M>(nb, cell, ls) != Outcome::done) {
+    detail::regular_triangulation_star(nb, ls);  // reuses the neighbours fetched so far
+    method = StarMethod::regular_triangulation;
+  }
+  finish_star(nb, ls, method, scratch, star);
+}
+
 std::size_t default_initial_neighbours(int m) {
   switch (m) {
     case 2: return 16;   // a star considers ~13 neighbours in a random sample, ~7 in an eps-net
@@ -353,12 +361,7 @@ void run_stars(const io::PointSet& points, const TangentPlanes& planes, const sp
       for (std::size_t t = b; t < e; ++t) {
         const std::size_t p = which[t];
         w->nb.reset(p);
-        StarMethod method = StarMethod::power_cell;
-        if (options.path != StarPath::automatic || power_cell_star<M>(w->nb, w->cell, w->ls) != Outcome::done) {
-          detail::regular_triangulation_star(w->nb, w->ls);  // reuses the neighbours fetched so far
-          method = StarMethod::regular_triangulation;
-        }
-        finish_star(w->nb, w->ls, method, w->scratch, stars[p]);
+        one_star<M>(w->nb, w->cell, w->ls, w->scratch, options.path, stars[p]);
       }
       if (options.progress) {
         std::size_t d = done.fetch_add(e - b) + (e - b);
@@ -369,7 +372,11 @@ void run_stars(const io::PointSet& points, const TangentPlanes& planes, const sp
   });
 }
 
-void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index) {
+// `planes_cover`: the planes must cover every point (compute_stars); tentative_star reads only m
+// from them (the refiner looks ahead in the middle of a round, before that round's points get
+// their planes).
+void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
+                  bool planes_cover = true) {
   const int m = planes.intrinsic_dimension();
   if (m < 2 || m > 4)
     throw std::invalid_argument("the tangential complex is implemented for intrinsic dimension m = 2, 3, 4 (got " +
@@ -379,7 +386,7 @@ void check_inputs(const io::PointSet& points, const TangentPlanes& planes, const
                                 " but the points in R^" + std::to_string(points.dimension));
   if (points.dimension > io::kMaxAmbientDimension)
     throw std::invalid_argument("ambient dimension above " + std::to_string(io::kMaxAmbientDimension) + " is not supported");
-  if (planes.size() < points.size())
+  if (planes_cover && planes.size() < points.size())
     throw std::invalid_argument("tangent planes cover " + std::to_string(planes.size()) + " of " +
                                 std::to_string(points.size()) + " points");
   if (index.size() != points.size() || (index.size() && index.dimension() != points.dimension))
@@ -436,25 +443,15 @@ void external_star(const io::PointSet& points, const TangentPlanes& planes, cons
   LocalStar ls;
   FinishScratch scratch;
   nb.reset_external(x, basis);
-  StarMethod method = StarMethod::power_cell;
-  if (power_cell_star<M>(nb, cell, ls) != Outcome::done) {
-    detail::regular_triangulation_star(nb, ls);
-    method = StarMethod::regular_triangulation;
-  }
-  finish_star(nb, ls, method, scratch, star);
+  one_star<M>(nb, cell, ls, scratch, StarPath::automatic, star);
 }
 
 }  // namespace
 
 Star tentative_star(const io::PointSet& points, const TangentPlanes& planes, const spatial::NeighbourIndex& index,
                     std::span<const double> x, std::span<const double> basis) {
-  // As check_inputs, but the planes need not cover the points: only m is read from them (the
-  // refiner looks ahead in the middle of a round, before the round's points get their planes).
+  check_inputs(points, planes, index, false);
   const int m = planes.intrinsic_dimension();
-  if (m < 2 || m > 4 || planes.ambient_dimension() != points.dimension || points.dimension > io::kMaxAmbientDimension)
-    throw std::invalid_argument("tentative_star: m must be 2, 3 or 4 and the planes' ambient dimension the points'");
-  if (index.size() != points.size() || (index.size() && index.dimension() != points.dimension))
-    throw std::invalid_argument("tentative_star: the neighbour index must hold exactly the points");
   if (static_cast<int>(x.size()) != points.dimension || basis.size() != static_cast<std::size_t>(points.dimension * m))
     throw std::invalid_argument("tentative_star: x needs N coordinates and its basis N*m entries");
   Star star;

@@ -64,6 +64,7 @@ class Neighbourhood {
   const TangentPlanes& planes() const { return planes_; }
 
  private:
+  void restart(std::size_t p, bool external, const double* centre, const double* basis);
   void fetch(std::size_t k);
 
   const io::PointSet& points_;
