@@ -5,6 +5,7 @@
 #include <ctime>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -282,27 +283,80 @@ void keep_for_checks(StarReport& r, int m, bool verify) {
 }
 
 // The ranks of the run and the points each analyses (blocks[r] for rank r; none in one process).
+// Every rank but 0 searches its block in `part`: the grid of its block's slab plus a halo of
+// cells on either side (detail/grid.hpp), not the whole point set. Each search proves that the
+// slab held its ball (PointGrid::covers); a point whose search leaves it is reported with the
+// radius it needed. With a fixed halo (--halo) such a point stays undetermined (UNDECIDED, with
+// the reason); otherwise the slab is widened to that radius and the point redone,
+// until every search is covered (at worst the slab is the whole grid, which covers everything).
 struct Distribution {
-  const detail::World* world;
+  const detail::World* world = nullptr;
   std::vector<std::vector<int>> blocks;
+  double halo = 0;  // the first halo's width (0: 16 spacings)
+  bool fixed = false;  // never widened (--halo)
+  const io::PointSet* points = nullptr;
+  int m = 0;
+  std::optional<detail::PointGrid> part;  // another rank's block plus halo; empty on rank 0 (the whole grid)
+  double width = 0;                       // the halo `part` was cut for
   bool root() const { return world->rank() == 0; }
+  const std::vector<int>& mine() const { return blocks[world->rank()]; }
+  // Cuts `part` for a halo of width h (from a grid over every point, built for the cut and freed).
+  void cut(double h) {
+    const detail::PointGrid whole(*points, m);
+    const auto [lo, hi] = whole.first_axis_range(mine());
+    const std::int64_t k = whole.cells_for(h);
+    part.emplace(whole, lo - k, hi + k);
+    width = h;
+  }
+  // The slot of point p's result: p on rank 0 (every point's), its place in mine() elsewhere.
+  std::size_t slot(std::size_t p) const {
+    if (root()) return p;
+    return static_cast<std::size_t>(std::lower_bound(mine().begin(), mine().end(), static_cast<int>(p)) - mine().begin());
+  }
 };
 
-// f(p, worker) for every point p this rank analyses (every point, in one process), writing
-// results[p]; then rank 0 receives the other ranks' results[p] (certify/distributed.hpp). Every
-// slot of `results` is then on rank 0 exactly what one process would have computed: f(p) depends
-// only on p and the inputs, which every rank holds whole.
-template <class R, class F>
-void for_each_point(const Distribution& D, std::vector<R>& results, int threads, F&& f) {
-  if (D.world->size() == 1) return detail::parallel_for(results.size(), threads, f);
-  const std::vector<int>& mine = D.blocks[D.world->rank()];
-  detail::parallel_for(mine.size(), threads, [&](std::size_t i, int w) { f(static_cast<std::size_t>(mine[i]), w); });
-  std::vector<std::string> all = D.world->gather(encode(results, mine));
+// results[slot(p)] = f(p, worker) for every point p this rank analyses (every point, in one
+// process); then rank 0 receives the other ranks' results (certify/distributed.hpp). Rank 0's
+// `results` has a slot per point, another rank's one per point of its block. Every slot of rank
+// 0's `results` is then exactly what one process computes: f(p) depends only on p and the inputs
+// (every rank holds all the points; another rank searches them in its part, and a result whose
+// search left the part is redone in a wider one or reported as such: need(result) > 0).
+// The filter statistics of a search that left the part are dropped (ctx[w] is restored): rank 0
+// then sums exactly the single-process counts.
+template <class R, class F, class Need>
+void for_each_point(Distribution& D, std::size_t n, std::vector<R>& results, int threads,
+                    std::vector<exact::FilterContext>& ctx, F&& f, Need&& need) {
+  if (D.world->size() == 1) {
+    results.assign(n, R{});
+    return detail::parallel_for(n, threads, [&](std::size_t p, int w) { results[p] = f(p, w); });
+  }
+  const std::vector<int>& mine = D.mine();
+  results.assign(D.root() ? n : mine.size(), R{});
+  std::vector<std::size_t> todo(mine.size());
+  std::iota(todo.begin(), todo.end(), std::size_t(0));
+  for (;;) {
+    detail::parallel_for(todo.size(), threads, [&](std::size_t k, int w) {
+      const std::size_t p = static_cast<std::size_t>(mine[todo[k]]);
+      const exact::FilterStats before = ctx[w].stats;
+      R& r = results[D.root() ? p : todo[k]];
+      r = f(p, w);
+      if (need(r) > 0) ctx[w].stats = before;
+    });
+    if (D.root() || D.fixed) break;
+    std::vector<std::size_t> again;
+    double h = 0;
+    for (std::size_t i : todo)
+      if (const double r = need(results[i]); r > 0) again.push_back(i), h = std::max(h, r);
+    if (again.empty()) break;
+    D.cut(std::max(h * 1.25, D.width * 2));  // geometric growth: a few cuts at most
+    todo = std::move(again);
+  }
+  std::vector<std::string> all = D.world->gather(D.root() ? std::string() : encode(results));
   for (std::size_t r = 1; r < all.size(); ++r) decode(all[r], D.blocks[r], results);
 }
 
 Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads,
-                    std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress, const Distribution& D) {
+                    std::vector<exact::FilterContext>& ctx, io::ProgressLine* progress, Distribution& D) {
   const std::size_t n = S.points->size();
   const int m = S.m;
   Stars st;
@@ -325,13 +379,13 @@ Stars analyse_stars(const io::Complex* given, const StarSettings& S, int threads
     for (std::size_t i = 0; i < st.tops().size(); ++i)
       for (int v : st.tops()[i]) st.at[next[v]++] = static_cast<int>(i);
   }
-  st.reports.resize(n);
-  for_each_point(D, st.reports, threads, [&](std::size_t p, int w) {
+  for_each_point(D, n, st.reports, threads, ctx, [&](std::size_t p, int w) {
     const std::vector<Simplex> claimed = given ? st.claimed(p) : std::vector<Simplex>();
-    st.reports[p] = analyse_star(S, static_cast<int>(p), given ? &claimed : nullptr, ctx[w]);
-    keep_for_checks(st.reports[p], m, given != nullptr);
+    StarReport r = analyse_star(S, static_cast<int>(p), given ? &claimed : nullptr, ctx[w]);
+    keep_for_checks(r, m, given != nullptr);
     if (progress) progress->add();
-  });
+    return r;
+  }, [](const StarReport& r) { return r.halo_needed; });
   if (!given && D.root()) {
     auto& K = st.complex.simplices;
     for (const auto& r : st.reports)
@@ -619,7 +673,7 @@ void report_unclaimed(CheckEntry& e) {
 // measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
-                                  bool stars_are_the_complex, io::ProgressLine* progress, const Distribution& D) {
+                                  bool stars_are_the_complex, io::ProgressLine* progress, Distribution& D) {
   CheckEntry secure(CheckId::secure_simplices);
   if (claimed)
     secure.claim = {{"secure", true},
@@ -634,18 +688,20 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   const std::size_t n = reports.size();
   SecureParams sp{tp.eps, tp.delta, tp.upsilon0, tp.shortest, {}, {}, {}, {}};
   sp.prepare();
-  std::vector<SecureReport> sr(n);
-  for_each_point(D, sr, threads, [&](std::size_t p, int w) {
-    if (reports[p].state != StarReport::State::proven) return;
-    sr[p] = analyse_secure(S, static_cast<int>(p), reports[p].simplices(), sp, ctx[w], &reports[p]);
+  std::vector<SecureReport> sr;
+  for_each_point(D, n, sr, threads, ctx, [&](std::size_t p, int w) {
+    const StarReport& star = reports[D.slot(p)];
+    if (star.state != StarReport::State::proven) return SecureReport{};
     if (progress) progress->add();
-  });
+    return analyse_secure(S, static_cast<int>(p), star.simplices(), sp, ctx[w], &star);
+  }, [](const SecureReport& r) { return r.halo_needed; });
   if (!D.root()) return secure;  // another rank: its results are on rank 0
-  long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0;
+  long ok = 0, bad = 0, fallbacks = 0, skipped = 0, unproven = 0, no_halo = 0;
   std::map<std::string, long> reasons;
   for (std::size_t p = 0; p < n; ++p) {
     if (reports[p].state != StarReport::State::proven) ++unproven;
-    ok += sr[p].secure, bad += sr[p].insecure, fallbacks += sr[p].exact_fallbacks, skipped += sr[p].undecided;
+    ok += sr[p].secure, bad += sr[p].insecure, fallbacks += sr[p].exact_fallbacks;
+    (sr[p].halo_needed > 0 ? no_halo : skipped) += sr[p].undecided;
     for (const auto& [s, why] : sr[p].failures) {
       std::string key = why.substr(0, why.find(" ("));
       ++reasons[key];
@@ -663,15 +719,20 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
     secure.refute("a simplex is not secure (Definition 3.1); the witnesses give the first failed condition");
   else if (skipped)
     secure.undecide(std::to_string(skipped) + " star simplices not evaluated (more than 50 000 points within 5 eps)");
+  else if (no_halo)
+    secure.undecide(std::to_string(no_halo) + " star simplices not evaluated: an MPI rank's halo does not hold the points "
+                    "within 5 eps of their vertex (rerun with a larger --halo, or without --halo: automatic)");
   else if (unproven)
     secure.undecide(std::to_string(unproven) + " star(s) not determined exactly");
   secure.details.update(json{{"parameters", tp.json_parameters()}, {"secure", ok}, {"not_secure", bad},
                               {"first_failed_condition_counts", reasons}, {"exact_fallbacks", fallbacks},
                               {"not_evaluated", skipped},
                               {"neighbourhood", "the points within 5 eps of p (ambient), projected orthogonally onto T_p"}});
-  secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped) + " star simplices secure (Definition 3.1" +
+  secure.summary = std::to_string(ok) + " of " + std::to_string(ok + bad + skipped + no_halo) + " star simplices secure (Definition 3.1" +
                    (tp.eps_is_sampling_radius ? ", eps >= the certified covering radius)" : ", eps a star-radius bound only)") +
-                   (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 50 000 points within 5 eps)" : "");
+                   (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 50 000 points within 5 eps)" : "") +
+                   (no_halo ? "; " + std::to_string(no_halo) + " not evaluated (an MPI rank's halo too small)" : "");
+  if (no_halo) secure.details["not_evaluated_halo_too_small"] = no_halo;
   if (!claimed) report_unclaimed(secure);
   return secure;
 }
@@ -1160,7 +1221,8 @@ Certificate run_certify(const CertifyOptions& o) {
   Certificate C;
   const int threads = std::max(1, o.threads);
   const detail::World one_process;
-  Distribution D{o.world ? o.world : &one_process, {}};
+  Distribution D;
+  D.world = o.world ? o.world : &one_process, D.halo = o.halo, D.fixed = o.fixed_halo;
   const bool root = D.root();
 
   Inputs in = read_inputs(o, threads);
@@ -1202,15 +1264,27 @@ Certificate run_certify(const CertifyOptions& o) {
   // Points off M (accepted only for a restricted claim) have no tangent space: no Del_TM.
   const bool on_M = sanity.off_manifold.empty();
   const exact::ImplicitSystem system(spec.equations, N);
-  const detail::PointGrid grid(P, m);
-  if (D.world->size() > 1)
-    for (int r = 0; r < D.world->size(); ++r) D.blocks.push_back(owned_points(grid, r, D.world->size()));
-  phase("check 2 sparsity");
-  SparsityResult sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity, threads);
-  watch.record(C, "sparsity");
+  std::optional<detail::PointGrid> whole(std::in_place, P, m);  // rank 0's (every point)
+  if (D.world->size() > 1) {
+    for (int r = 0; r < D.world->size(); ++r) D.blocks.push_back(owned_points(*whole, r, D.world->size()));
+    D.points = &P, D.m = m;
+    if (!root) {  // another rank keeps its part: its block and a halo (by default 16 typical spacings to start)
+      const double spacing = whole->spacing();
+      whole.reset();
+      D.cut(D.halo > 0 ? D.halo : 16 * spacing);
+    }
+  }
+  const detail::PointGrid& grid = root ? *whole : *D.part;
+  SparsityResult sparsity;  // (rank 0's alone: the other ranks do not hold every point)
+  if (root) {
+    phase("check 2 sparsity");
+    sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity, threads);
+    watch.record(C, "sparsity");
+  }
 
   const auto* radius_per_point = claims.star_radius_per_point_file.empty() ? nullptr : &claims.star_radius_per_point;
   const auto* covering_per_point = claims.covering_per_point_file.empty() ? nullptr : &claims.covering_per_point;
+  // (on another rank `grid` is D.part, which D.cut re-cuts in place: S.grid stays valid)
   const StarSettings S{&P, &system, &grid, m, claims.power_protection, claims.star_radius, radius_per_point};
   std::optional<Stars> stars;  // Del_TM(P): needs T_p M at every point
   std::optional<CheckEntry> stars_entry, consistency, protection_entry, radius_entry, secure, theorem;

@@ -58,6 +58,12 @@ struct CertifyOptions {
   // calls run_certify with the same options; rank 0's certificate is the single-process one (byte
   // for byte), the other ranks' is empty.
   const detail::World* world = nullptr;
+  // An MPI job: every rank but 0 holds, besides its own points, those within `halo` of them on
+  // the grid's first axis (a slab of cells; 0: 16 typical point spacings). With fixed_halo a point
+  // whose star search or check-7 neighbourhood needs more is UNDECIDED (with the reason); else the
+  // halo is widened until every search is held (docs/design.md §4.11). No effect in one process.
+  double halo = 0;
+  bool fixed_halo = false;
 };
 
 // Throws io::InputError on bad input (exit status 2); never writes anything. In an MPI job, every

@@ -26,10 +26,11 @@ class PointGrid;
 // Every point is in exactly one block.
 std::vector<int> owned_points(const detail::PointGrid& grid, int rank, int size);
 
-// reports[p] for each p in `owned` (in that order), and back: decode writes those slots.
-std::string encode(const std::vector<StarReport>& reports, const std::vector<int>& owned);
+// A rank's results, one per point of its block `owned` in that order, and back on rank 0: decode
+// writes reports[p] for each p of `owned`.
+std::string encode(const std::vector<StarReport>& of_owned);
 void decode(const std::string& bytes, const std::vector<int>& owned, std::vector<StarReport>& reports);
-std::string encode(const std::vector<SecureReport>& reports, const std::vector<int>& owned);
+std::string encode(const std::vector<SecureReport>& of_owned);
 void decode(const std::string& bytes, const std::vector<int>& owned, std::vector<SecureReport>& reports);
 
 std::string encode_stats(const exact::FilterStats& stats);

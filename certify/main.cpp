@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
   app.add_option("--report", report_path, "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the complex with the witnesses); written atomically with --out");
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))->capture_default_str();
+  app.add_option("--halo", o.halo, "MPI runs: the distance around its own points up to which each rank but 0 holds the others; a point whose searches need more is UNDECIDED (default: automatic, widened as needed)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--no-times", no_times, "leave wall-clock times out of the certificate (byte-identical reruns)");
   try {
     app.parse(argc, argv);
@@ -65,6 +67,7 @@ int main(int argc, char** argv) {
               << "Run with --help for more information.\n";
     return 2;
   }
+  o.fixed_halo = app.count("--halo") > 0;
   if (!kind.empty())
     o.kind = kind == "restricted" ? certify::ComplexKind::restricted : kind == "intrinsic" ? certify::ComplexKind::intrinsic : certify::ComplexKind::tangential;
   if ((!kind.empty() || o.complex_format != "auto") && o.complex.empty()) {

@@ -81,6 +81,7 @@ struct Local {
   std::vector<IA> gram;       // m x m enclosure of G = U^T U
   double radius = 0;
   bool all = false;
+  bool covered = true;  // the grid held every point within `radius` (false only on an MPI rank's part)
 
   const IA* row(int l) const { return rows.data() + static_cast<std::size_t>(l) * (m + 1); }
   const double* drow(int l) const { return drows.data() + static_cast<std::size_t>(l) * (m + 1); }
@@ -160,7 +161,9 @@ Local make_local(const StarSettings& S, const exact::TangentSpace* T, const std:
   S.grid->visit_ball(S.points->point(p), radius, [&](int q, const double* x) {
     if (q != p) near.emplace_back(q, x);
   });
-  return make_local_of_near(S, T, U, gram, p, near, radius, false);
+  Local L = make_local_of_near(S, T, U, gram, p, near, radius, false);
+  L.covered = S.grid->covers(S.points->point(p), radius);
+  return L;
 }
 
 // Enclosure of a cell's centre (y = 2z with c = p + U z) and R^2 = z^T G z from the interval rows:
@@ -649,6 +652,12 @@ StarReport analyse_star(const StarSettings& S, int p, const std::vector<Simplex>
   }
   for (int iter = 0; iter < kMaxRadiusRuns; ++iter) {
     Local L = make_local(S, &T, U, G, p, r);
+    if (!L.covered) {  // an MPI rank: the ball is not all held here (never in one process)
+      out.state = StarReport::State::incomplete, out.halo_needed = r;
+      out.reason = "this MPI rank's halo does not hold the points within " + std::to_string(r) +
+                   " of p, which the star search needs: rerun with a larger --halo, or without --halo (automatic)";
+      return out;
+    }
     out.search_radius = r;
     out.searched_all = L.all;
     auto grow = [&](double need) {
@@ -745,6 +754,7 @@ CellReport test_cell(const StarSettings& S, int p, const Simplex& s, exact::Filt
   }
   for (;;) {
     Local L = make_local(S, &T, U, G, p, r);
+    if (!L.covered) throw std::logic_error("test_cell: the grid does not hold every point (run on rank 0 only)");
     List c{};
     for (int i = 0, k = 1; i <= m; ++i)
       if (s[i] != p) c[k++] = L.local_of(s[i]);
@@ -1017,6 +1027,10 @@ SecureReport analyse_secure(const StarSettings& S, int p, const std::vector<Simp
       const double w = (alpha * a + beta * IA(r)).sup();
       if (w < r) half[i] = w;
     }
+  }
+  if (!S.grid->covers(P.point(p), r)) {  // an MPI rank whose halo does not hold W (never in one process)
+    out.undecided = static_cast<long>(star.size()), out.halo_needed = r;
+    return out;
   }
   std::size_t w_size = 1;  // p and the points of W in the box
   // The coordinates are the grid's copy, read in sequence; the filter unrolled for the common

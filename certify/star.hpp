@@ -86,9 +86,14 @@ struct StarReport {
   std::vector<CellReport> claimed;  // each claimed m-simplex at p, tested at p (empty when claimed_verified)
   std::string link_problem;         // why the claimed star is not a closed star, if so
   double search_radius = 0;         // every point within this distance of p was tested
-  // Enclosures of the exact tangent basis U (N x m) and of G = U^T U (m x m) at p, for check 7.
+  // Enclosures of the exact tangent basis U (N x m) and of G = U^T U (m x m) at p, for check 7 on
+  // the same rank (not sent between MPI ranks; without them check 7 recomputes U).
   std::vector<exact::Interval> basis_enclosure, gram_enclosure;
   bool searched_all = false;        // every sample point was tested
+  // An MPI rank whose part plus halo (detail/grid.hpp, PointGrid::covers) did not hold the ball of
+  // this radius around p, which the search needed: the star is then not determined (state
+  // incomplete). 0 otherwise, and always in one process.
+  double halo_needed = 0;
   // What certify.cpp keeps of `star` when it drops it (keep_for_checks): the simplices, m + 1 vertices each, and extremes.
   std::vector<int> vertices;
   int cells = 0, min_margin_cell = -1, min_margin_point = -1, max_radius_cell = -1;
@@ -124,6 +129,7 @@ struct SecureReport {
   long secure = 0, insecure = 0;
   long undecided = 0;        // not evaluated: more than 50 000 points within 5 eps of p
   long exact_fallbacks = 0;  // cells decided in exact rationals after the interval filter
+  double halo_needed = 0;    // > 0: an MPI rank's halo did not hold W (radius halo_needed); the cells are `undecided`
   std::vector<std::pair<Simplex, std::string>> failures;  // (simplex, first failed condition), capped
 };
 // `report`: the star analysis of p, if available (its enclosures of the tangent basis are reused).

@@ -19,7 +19,7 @@ using detail::parse_count;
 
 namespace {
 
-std::vector<int> parse_simplex(const std::vector<std::string_view>& tokens, std::size_t first, std::size_t num_vertices,
+std::vector<int> parse_simplex(std::span<const std::string_view> tokens, std::size_t first, std::size_t num_vertices,
                                const std::string& file, long line) {
   std::vector<int> s;
   if (tokens.size() > first + kMaxSimplexVertices)
@@ -91,7 +91,7 @@ std::vector<bool> faces_of_others(const std::vector<std::vector<int>>& sorted) {
 // Which format, when none was given: a tag on the first line, then the mesh formats (first line
 // "ply", first word "solid", extension .obj/.ply/.stl), then headerless lines of integers (gudhi
 // when every line has the same length or every shorter line is a face of a longer one).
-ComplexFormat detect_format(const std::string& text, const std::string& file, const std::vector<Line>& lines) {
+ComplexFormat detect_format(const std::string& text, const std::string& file, const detail::Lines& lines) {
   if (!lines.empty()) {
     const std::string_view tag = lines[0].tokens[0];
     if (tag == "delcert-complex") return ComplexFormat::delcert;
@@ -139,7 +139,7 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
 }
 
 // GUDHI simplex lists: every line a simplex; the maximal simplices are kept.
-void parse_gudhi(const std::vector<Line>& lines, const std::string& file, std::size_t num_vertices, ComplexFile& out,
+void parse_gudhi(const detail::Lines& lines, const std::string& file, std::size_t num_vertices, ComplexFile& out,
                  std::vector<long>& line_of) {
   if (lines.empty()) throw InputError(file, 0, "empty GUDHI simplex list; expected one simplex per line");
   std::size_t nv = num_vertices;
@@ -214,10 +214,10 @@ ComplexFile parse_complex(const std::string& text, const std::string& file, cons
   std::vector<long> line_of;
   const bool binary_mesh = options.format == ComplexFormat::ply || options.format == ComplexFormat::stl;
   // A binary mesh is not split into lines (its bytes are not text).
-  const std::vector<Line> lines = binary_mesh ? std::vector<Line>{} : detail::split_lines(text);
+  const detail::Lines lines = binary_mesh ? detail::Lines{} : detail::split_lines(text), none;
   ComplexFormat format = options.format;
   if (format == ComplexFormat::automatic)
-    format = detect_format(text, file, detect_mesh_format(text, file) ? std::vector<Line>{} : lines);
+    format = detect_format(text, file, detect_mesh_format(text, file) ? none : lines);
   out.format = format;
   if (format == ComplexFormat::obj || format == ComplexFormat::ply || format == ComplexFormat::stl) {
     Mesh mesh = parse_mesh(text, file,

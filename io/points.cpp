@@ -20,7 +20,7 @@ using detail::parse_finite_double;
 namespace {
 
 // Reads `count` coordinate lines of `dim` numbers starting at lines[first]; records line numbers.
-void read_coordinate_lines(const std::vector<Line>& lines, std::size_t first, long count, int dim,
+void read_coordinate_lines(const detail::Lines& lines, std::size_t first, long count, int dim,
                            const std::string& file, PointSet& out, std::vector<long>& line_of_point) {
   if (static_cast<long>(lines.size() - first) < count) {
     long last = lines.empty() ? 0 : lines.back().number;
@@ -100,7 +100,8 @@ PointsFile parse_points_file(const std::string& text, const std::string& file, c
     auto take_line = [&]() -> std::vector<std::string_view> {
       if (!rest.empty()) return std::exchange(rest, {});
       if (next >= lines.size()) throw InputError(file, lines.back().number, "unexpected end of " + tag + " header");
-      return lines[next++].tokens;
+      const auto t = lines[next++].tokens;
+      return {t.begin(), t.end()};
     };
     long header_line = head.number;
     if (tag == "nOFF") {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
 
 // Why the grid returns a SUPERSET of every queried box, at any scale and in any rounding mode.
 //
@@ -192,6 +193,89 @@ PointGrid::PointGrid(const io::PointSet& points, int m, double cell_hint) : poin
       i = j;
     }
   }
+  slab_lo_ = 0, slab_hi_ = axes_.empty() ? 0 : dims_[0] - 1;
+}
+
+// The slab's points are one run of order_: keys are mixed-radix with the first axis most
+// significant (key()), so the cells with first-axis index in [first, last] are the keys in
+// [first * stride, (last + 1) * stride), stride = the product of the other axes' cell counts,
+// and order_ is sorted by key. The tables are the full grid's, cut to that range and shifted.
+PointGrid::PointGrid(const PointGrid& full, std::int64_t first, std::int64_t last)
+    : points_(full.points_), axes_(full.axes_), k0_(full.k0_), k1_(full.k1_), dims_(full.dims_), e_(full.e_),
+      f1_(full.f1_), f2_(full.f2_), diameter_(full.diameter_), spacing_(full.spacing_) {
+  const int N = points_.dimension;
+  if (full.key_base_ != 0 || full.slab_lo_ != 0 || (!full.axes_.empty() && full.slab_hi_ != full.dims_[0] - 1))
+    throw std::logic_error("PointGrid: a slab is cut from a grid over every point");
+  if (axes_.empty() || full.order_.empty()) {  // nothing to cut: every point
+    order_ = full.order_, ordered_ = full.ordered_, dense_ = full.dense_, lines_ = full.lines_, last_ = full.last_;
+    cells_ = full.cells_, slab_lo_ = full.slab_lo_, slab_hi_ = full.slab_hi_;
+    return;
+  }
+  slab_lo_ = std::clamp<std::int64_t>(first, 0, dims_[0] - 1), slab_hi_ = std::clamp<std::int64_t>(last, 0, dims_[0] - 1);
+  if (slab_hi_ < slab_lo_) slab_hi_ = slab_lo_;  // (an empty request keeps one slice: covers() stays exact)
+  std::int64_t stride = 1;
+  for (std::size_t t = 1; t < dims_.size(); ++t) stride *= dims_[t];
+  const std::int64_t last_dim = dims_.back();
+  key_base_ = slab_lo_ * stride;
+  const std::int64_t key_end = (slab_hi_ + 1) * stride;  // <= the product of dims_ <= 2^62
+  std::int64_t b = 0, e = 0;
+  if (!full.dense_.empty()) {
+    b = full.dense_[key_base_], e = full.dense_[key_end];
+    dense_.assign(full.dense_.begin() + key_base_, full.dense_.begin() + key_end + 1);
+    for (int& x : dense_) x -= static_cast<int>(b);
+  } else if (!full.lines_.empty()) {
+    line_base_ = key_base_ / last_dim;  // stride is a multiple of last_dim (at least two axes here)
+    const std::int64_t line_end = key_end / last_dim;
+    b = full.lines_[line_base_], e = full.lines_[line_end];
+    lines_.assign(full.lines_.begin() + line_base_, full.lines_.begin() + line_end + 1);
+    for (int& x : lines_) x -= static_cast<int>(b);
+    last_.assign(full.last_.begin() + b, full.last_.begin() + e);
+  } else {
+    b = static_cast<std::int64_t>(full.order_.size()), e = 0;
+    for (const auto& [k, range] : full.cells_)
+      if (k >= key_base_ && k < key_end) b = std::min<std::int64_t>(b, range.first), e = std::max<std::int64_t>(e, range.second);
+    if (e < b) b = e = 0;
+    for (const auto& [k, range] : full.cells_)
+      if (k >= key_base_ && k < key_end)
+        cells_[k] = {range.first - static_cast<int>(b), range.second - static_cast<int>(b)};
+  }
+  order_.assign(full.order_.begin() + b, full.order_.begin() + e);
+  ordered_.assign(full.ordered_.begin() + b * N, full.ordered_.begin() + e * N);
+}
+
+bool PointGrid::covers(std::span<const double> c, double r) const {
+  if (axes_.empty() || (slab_lo_ == 0 && slab_hi_ == dims_[0] - 1)) return true;  // every point is held
+  const double x = c[axes_[0]];
+  // The query's first-axis cells, exactly as gather_box computes them (step 4, then the clamp of 3.).
+  const double a = scaled_floor(std::nextafter(x - r, -INFINITY)), b = scaled_floor(std::nextafter(x + r, INFINITY));
+  if (!(r >= 0) || std::isnan(a) || std::isnan(b)) return false;
+  const std::int64_t lo = static_cast<std::int64_t>(std::clamp(a, k0_[0], k1_[0]) - k0_[0]),
+                     hi = static_cast<std::int64_t>(std::clamp(b, k0_[0], k1_[0]) - k0_[0]);
+  return lo >= slab_lo_ && hi <= slab_hi_;
+}
+
+std::pair<std::int64_t, std::int64_t> PointGrid::first_axis_range(std::span<const int> points) const {
+  if (points.empty() || axes_.empty()) return {0, -1};
+  std::int64_t lo = dims_[0], hi = -1;
+  for (int p : points) {
+    const std::int64_t i = index(0, points_.point(p)[axes_[0]]);
+    lo = std::min(lo, i), hi = std::max(hi, i);
+  }
+  return {lo, hi};
+}
+
+std::int64_t PointGrid::cells_for(double h) const {
+  const std::int64_t cap = axes_.empty() ? 1 : dims_[0];
+  // A ball of radius h centred at x in cell i (i 2^e <= x < (i + 1) 2^e) has x - h >= (i - t) 2^e,
+  // t = h / 2^e, so its lowest cell is >= i - ceil(t); the query's nextafter (step 4) can lower
+  // fl(x - h) across one more boundary: >= i - ceil(t) - 1. Likewise above. So k = ceil(t) + 1.
+  // t is computed as (h * f1) * f2: multiplying by a power of two is exact unless it overflows
+  // (+inf or DBL_MAX: the cap) or lands below 2^-1022 (then 0 < t < 1, computed possibly as 0:
+  // ceil(t) = 1 is used for every h > 0).
+  const double t = (h * f1_) * f2_;
+  const double cells = std::max(std::ceil(t), h > 0 ? 1.0 : 0.0) + 1;
+  if (!(cells < double(cap))) return cap;
+  return static_cast<std::int64_t>(cells);
 }
 
 std::int64_t PointGrid::key(const std::int64_t* idx) const {
@@ -243,6 +327,10 @@ void PointGrid::gather_box(std::span<const double> c, const double* half, std::v
     if (b < k0_[t] || a > k1_[t]) return;  // the box misses every point (exact test)
     lo[t] = static_cast<std::int64_t>(std::max(a, k0_[t]) - k0_[t]);  // = index(t, L), step 3
     hi[t] = static_cast<std::int64_t>(std::min(b, k1_[t]) - k0_[t]);  // = index(t, U)
+    if (t == 0) {  // a slab (covers()): only its cells are held
+      lo[0] = std::max(lo[0], slab_lo_), hi[0] = std::min(hi[0], slab_hi_);
+      if (lo[0] > hi[0]) return;
+    }
     cells *= double(hi[t] - lo[t] + 1);
   }
   if (!cells_.empty() && cells >= double(cells_.size())) {  // cheaper to scan every occupied cell
@@ -265,11 +353,13 @@ void PointGrid::gather_box(std::span<const double> c, const double* half, std::v
       std::copy(idx, idx + A, a);
       std::copy(idx, idx + A, b);
       a[A - 1] = lo[A - 1], b[A - 1] = hi[A - 1];
-      if (dense_[key(a)] < dense_[key(b) + 1]) out.push_back({dense_[key(a)], dense_[key(b) + 1]});
+      const std::int64_t ka = key(a) - key_base_, kb = key(b) + 1 - key_base_;
+      if (dense_[ka] < dense_[kb]) out.push_back({dense_[ka], dense_[kb]});
     } else if (!lines_.empty()) {
       // The line's points are sorted by last-axis index: two binary searches cut out [lo, hi].
       std::int64_t line = 0;
       for (int t = 0; t < A - 1; ++t) line = line * dims_[t] + idx[t];
+      line -= line_base_;
       const auto b = last_.begin() + lines_[line], e = last_.begin() + lines_[line + 1];
       const auto from = std::lower_bound(b, e, lo[A - 1]), to = std::upper_bound(from, e, hi[A - 1]);
       if (from < to) out.push_back({static_cast<int>(from - last_.begin()), static_cast<int>(to - last_.begin())});

@@ -32,6 +32,23 @@ class PointGrid {
   // `cell_hint`: intended cell size (e.g. a typical spacing); <= 0 picks one from the point count
   // and the intrinsic dimension m. The cell size actually used is a power of two near it.
   PointGrid(const io::PointSet& points, int intrinsic_dimension, double cell_hint = 0);
+  // A slab of `full`: the same geometry (cells, spacing(), diameter()), holding only the points whose
+  // cell index on the first grid axis lies in [first, last] (clamped to the grid), contiguous in cell
+  // order. A query answers exactly as `full` does whenever covers() holds for it (an MPI rank's own
+  // part plus its halo: certify/distributed.hpp).
+  PointGrid(const PointGrid& full, std::int64_t first, std::int64_t last);
+
+  // True when every point of the box |q_k - c_k| <= r (hence of B(c, r), and of every box query
+  // with half-widths <= r) is held: the query's cells on the first grid axis lie in the slab
+  // (exact, in any rounding mode: the same cell indices as the query's, grid.cpp step 4). Always
+  // true for a grid over every point. A NaN centre or radius is covered only by such a grid.
+  bool covers(std::span<const double> c, double r) const;
+  // The cell indices on the first grid axis of the given points: [min, max] ({0, -1} for none).
+  std::pair<std::int64_t, std::int64_t> first_axis_range(std::span<const int> points) const;
+  // The halo of width h >= 0 in cells: every query of radius <= h centred in a cell of [first,
+  // last] (first grid axis) lies in [first - k, last + k] (grid.cpp). Capped at the number of
+  // cells on the axis (also for h NaN or infinite).
+  std::int64_t cells_for(double h) const;
 
   // Indices of every point q with |q_k - c_k| <= r on the grid axes (a superset of B(c, r)),
   // in increasing index order. A NaN radius or centre returns every point.
@@ -58,6 +75,8 @@ class PointGrid {
   double diameter() const { return diameter_; }
   // The point indices in cell order (cells in lexicographic order of their integer coordinates).
   const std::vector<int>& order() const { return order_; }
+  // The held slab on the first grid axis (every cell for a grid over every point).
+  std::pair<std::int64_t, std::int64_t> slab() const { return {slab_lo_, slab_hi_}; }
   // Which cell table the queries read: "dense", "lines" or "cells" (for the tests).
   const char* table() const { return !dense_.empty() ? "dense" : !lines_.empty() ? "lines" : "cells"; }
 
@@ -80,6 +99,9 @@ class PointGrid {
   int e_ = 0;
   double f1_ = 1, f2_ = 1;         // 2^-e = f1 * f2, each factor a double (f2 != 1 only if e < -1022)
   double diameter_ = 0, spacing_ = 1;
+  // The held slab [slab_lo_, slab_hi_] of first-axis indices, and the first key and line it holds:
+  // dense_ and lines_ are indexed from key_base_ and line_base_ (0 for a grid over every point).
+  std::int64_t slab_lo_ = 0, slab_hi_ = 0, key_base_ = 0, line_base_ = 0;
   std::vector<int> order_;  // point indices sorted by cell key
   std::vector<double> ordered_;  // the points' coordinates in that order (n x N: the filter reads them in sequence)
   // One of three cell tables (grid.cpp, "Cost"): when the grid is small enough, dense_: key -> begin

@@ -7,8 +7,10 @@
 
 namespace delcert::io::detail {
 
-std::vector<Line> split_lines(const std::string& text) {
-  std::vector<Line> lines;
+Lines split_lines(const std::string& text) {
+  Lines out;
+  std::vector<std::size_t> first;  // each line's first token in out.tokens_ (spans are set at the end:
+                                   // the array moves while it grows)
   long number = 0;
   std::size_t pos = 0;
   while (pos < text.size()) {
@@ -18,18 +20,22 @@ std::vector<Line> split_lines(const std::string& text) {
     std::string_view line(text.data() + pos, end - pos);
     pos = end + 1;
     if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    Line l{number, {}};
-    if (!line.empty()) l.tokens.reserve(8);  // one allocation for a usual line (a point, a simplex)
+    const std::size_t begin = out.tokens_.size();
     std::size_t i = 0;
     while (i < line.size()) {
       while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
       std::size_t s = i;
       while (i < line.size() && !(line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-      if (i > s) l.tokens.push_back(line.substr(s, i - s));
+      if (i > s) out.tokens_.push_back(line.substr(s, i - s));
     }
-    if (!l.tokens.empty()) lines.push_back(std::move(l));
+    if (out.tokens_.size() > begin) out.lines_.push_back({number, {}}), first.push_back(begin);
   }
-  return lines;
+  out.tokens_.shrink_to_fit();
+  for (std::size_t l = 0; l < out.lines_.size(); ++l) {
+    const std::size_t e = l + 1 < first.size() ? first[l + 1] : out.tokens_.size();
+    out.lines_[l].tokens = std::span<const std::string_view>(out.tokens_.data() + first[l], e - first[l]);
+  }
+  return out;
 }
 
 double parse_finite_double(std::string_view token, const std::string& file, long line) {

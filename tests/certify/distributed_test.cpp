@@ -2,6 +2,8 @@
 // (certify/detail/world.hpp). The ranks here are threads of this process, joined by an in-process
 // World that moves the same bytes MPI would (tests/certify/mpi_test.sh runs the real mpirun): rank
 // 0's certificate must be the single-process one, byte for byte.
+#include <nlohmann/json.hpp>
+
 #include <condition_variable>
 #include <map>
 #include <mutex>
@@ -129,6 +131,41 @@ TEST(Distributed, BrokenComplexWithMoreRanksThanPoints) {
     EXPECT_EQ(certify_on_ranks(o, ranks).text, one) << ranks << " ranks";
 }
 
+// The other ranks search their points in their own part (their block's slab of grid cells plus a
+// halo), not in the whole point set. A halo far too small, fixed (--halo): the points whose star
+// or check-7 neighbourhood leaves it are undetermined, so the run is UNDECIDED with the reason,
+// never CERTIFIED; the same width not fixed is widened until every search is held, and the
+// certificate is the single-process one again (the widening is what makes the difference).
+TEST(Distributed, HaloTooSmallIsUndecidedUnlessWidened) {
+  TempDir dir("distributed-halo");
+  io::write_points(dir.file("s2.txt"), spread_sphere(3, 400, 0.11, 21));
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2", o.points = dir.file("s2.txt"), o.skip_restricted = true;
+  const std::string one = single(o);
+  EXPECT_EQ(nlohmann::json::parse(one)["verdict"], "CERTIFIED");
+  o.halo = 1e-6;  // two cells of the grid on either side of each block
+  EXPECT_EQ(certify_on_ranks(o, 3).text, one);  // widened
+  o.fixed_halo = true;
+  const std::string fixed = certify_on_ranks(o, 3).text;
+  const nlohmann::json c = nlohmann::json::parse(fixed);
+  EXPECT_EQ(c["verdict"], "UNDECIDED");
+  const nlohmann::json* stars = nullptr;
+  for (const auto& e : c["checks"])
+    if (e["name"] == "stars") stars = &e;
+  ASSERT_NE(stars, nullptr);
+  EXPECT_EQ((*stars)["verdict"], "UNDECIDED");
+  EXPECT_GT((*stars)["details"]["stars_undetermined"].get<long>(), 0);
+  EXPECT_NE((*stars)["details"]["undetermined_examples"].dump().find("halo"), std::string::npos);
+  for (const auto& e : c["checks"])  // check 7's neighbourhoods (5 eps) leave the halo too
+    if (e["name"] == "secure_simplices") {
+      EXPECT_GT(e["details"].value("not_evaluated_halo_too_small", 0L), 0) << e.dump();
+      EXPECT_EQ(e["details"]["decision"], "UNDECIDED");
+    }
+  // A fixed halo wide enough for every search changes nothing.
+  o.halo = 10;
+  EXPECT_EQ(certify_on_ranks(o, 3).text, one);
+}
+
 TEST(Distributed, BlocksPartitionThePointsInCellOrder) {
   const io::PointSet P = spread_sphere(3, 300, 0.15, 4);
   const detail::PointGrid grid(P, 2);
@@ -161,7 +198,7 @@ StarReport sample_report() {
   c.degenerate = true;
   r.star = {c, CellReport{}}, r.claimed = {c}, r.link_problem = "ridge {3, 9} in 1 cell";
   r.search_radius = 0.7, r.basis_enclosure = {{0.1, 0.2}, {-1, 1}}, r.gram_enclosure = {{1, 1}};
-  r.searched_all = true, r.vertices = {1, 3, 9, 2, 3, 4}, r.cells = 2;
+  r.searched_all = true, r.halo_needed = 1e308, r.vertices = {1, 3, 9, 2, 3, 4}, r.cells = 2;
   r.min_margin_cell = 1, r.min_margin_point = 8, r.max_radius_cell = 0, r.min_margin = {0.5, 0.6}, r.max_radius2 = {2, 3};
   return r;
 }
@@ -169,7 +206,7 @@ StarReport sample_report() {
 TEST(Distributed, StarReportsCrossBitForBit) {
   std::vector<StarReport> sent(6), got(6);
   sent[3] = sample_report(), sent[5].p = 5;
-  const std::string bytes = encode(sent, {3, 5});
+  const std::string bytes = encode(std::vector<StarReport>{sent[3], sent[5]});
   decode(bytes, {3, 5}, got);
   for (int p : {3, 5}) {
     const StarReport &a = sent[p], &b = got[p];
@@ -186,9 +223,7 @@ TEST(Distributed, StarReportsCrossBitForBit) {
     ASSERT_EQ(b.claimed.size(), a.claimed.size());
     // Every double bit for bit (the signed zero and the subnormals included).
     auto bits = [](const StarReport& r) {
-      std::vector<exact::Interval> v{r.min_margin, r.max_radius2, {r.search_radius, r.search_radius}};
-      v.insert(v.end(), r.basis_enclosure.begin(), r.basis_enclosure.end());
-      v.insert(v.end(), r.gram_enclosure.begin(), r.gram_enclosure.end());
+      std::vector<exact::Interval> v{r.min_margin, r.max_radius2, {r.search_radius, r.halo_needed}};
       for (const auto* cells : {&r.star, &r.claimed})
         for (const auto& c : *cells) v.insert(v.end(), {c.conflict_power, c.radius2, c.margin, c.protection_power});
       std::string s(v.size() * sizeof(exact::Interval), '\0');
@@ -196,6 +231,8 @@ TEST(Distributed, StarReportsCrossBitForBit) {
       return s;
     };
     EXPECT_EQ(bits(b), bits(a));
+    // Check 7's inputs stay where the star was computed (check 7 runs there).
+    EXPECT_TRUE(b.basis_enclosure.empty() && b.gram_enclosure.empty());
     for (std::size_t i = 0; i < a.star.size(); ++i) {
       const CellReport &x = a.star[i], &y = b.star[i];
       EXPECT_EQ(y.simplex, x.simplex);
@@ -216,7 +253,9 @@ TEST(Distributed, SecureReportsStatsAndMeasuredCross) {
   std::vector<SecureReport> sent(3), got(3);
   sent[1].secure = 7, sent[1].insecure = 2, sent[1].undecided = 1, sent[1].exact_fallbacks = 9;
   sent[1].failures = {{{0, 1, 2}, "protection (a point at 0.1)"}, {{1, 2, 3}, "thickness"}};
-  decode(encode(sent, {1}), {1}, got);
+  sent[1].halo_needed = 0x1p-1074;
+  decode(encode(std::vector<SecureReport>{sent[1]}), {1}, got);
+  EXPECT_EQ(got[1].halo_needed, sent[1].halo_needed);
   EXPECT_EQ(got[1].secure + got[1].insecure * 10 + got[1].undecided * 100 + got[1].exact_fallbacks * 1000, 9127);
   EXPECT_EQ(got[1].failures, sent[1].failures);
 

@@ -206,6 +206,75 @@ io::PointSet scaled_cloud(Rng& rng, int n, int N, double scale) {
   return P;
 }
 
+// An MPI rank's part (a slab of the whole grid, certify/detail/grid.hpp): wherever covers() says
+// so, every query answers exactly as the whole grid does, on each cell table; where it does not,
+// the slab gives only points it holds; cells_for(h) is wide enough for every ball of radius h
+// centred in the slab's core. A mutant covers() that ignores the slab fails the "not covered"
+// count; one that tests one cell too far fails the equality.
+TEST(PointGrid, SlabAnswersLikeTheWholeGridWhereItCovers) {
+  Rng rng(14);
+  io::PointSet P;
+  P.dimension = 3;
+  for (int i = 0; i < 3000; ++i) P.push_back(std::vector<double>{rng.uniform() * 2 - 1, rng.uniform() * 2 - 1, rng.uniform() * 0.5});
+  std::map<std::string, int> seen;
+  long covered = 0, not_covered = 0;
+  for (double hint : {0.0, 0x1p-8, 0x1p-11}) {
+    const detail::PointGrid whole(P, 2, hint);
+    const auto [lo, hi] = whole.first_axis_range(whole.order());
+    EXPECT_TRUE(whole.covers(std::vector<double>{9, 9, 9}, 1e300));  // the whole grid covers everything
+    for (int cut = 0; cut < 4; ++cut) {
+      const std::int64_t n0 = hi - lo + 1, a = lo + n0 * cut / 5, b = lo + n0 * (cut + 2) / 5;
+      const detail::PointGrid slab(whole, a, b);
+      ++seen[slab.table()];
+      // It holds exactly the points whose first-axis cell is in [a, b].
+      std::vector<int> held(slab.order()), expect;
+      std::sort(held.begin(), held.end());
+      for (int i = 0; i < static_cast<int>(P.size()); ++i) {
+        const int one[1] = {i};
+        const std::int64_t c = whole.first_axis_range(one).first;
+        if (c >= a && c <= b) expect.push_back(i);
+      }
+      EXPECT_EQ(held, expect) << slab.table();
+      EXPECT_EQ(slab.spacing(), whole.spacing());
+      EXPECT_EQ(slab.diameter(), whole.diameter());
+      for (int q = 0; q < 200; ++q) {
+        const int p = expect.empty() ? 0 : expect[rng.below(static_cast<int>(expect.size()))];
+        std::vector<double> c(P.point(p).begin(), P.point(p).end());
+        const double r = q % 10 == 0 ? 2.0 : rng.uniform() * 0.4;
+        std::vector<double> half{r * rng.uniform(), r, r * rng.uniform()};
+        std::vector<int> w1, w2;
+        whole.visit_ball(c, r, half, [&](int i, const double*) { w1.push_back(i); });
+        slab.visit_ball(c, r, half, [&](int i, const double*) { w2.push_back(i); });
+        std::sort(w1.begin(), w1.end()), std::sort(w2.begin(), w2.end());
+        if (slab.covers(c, r)) {
+          ++covered;
+          EXPECT_EQ(slab.candidates(c, r), whole.candidates(c, r)) << slab.table();
+          EXPECT_EQ(slab.ball(c, r), whole.ball(c, r));
+          EXPECT_EQ(w2, w1);
+        } else {
+          ++not_covered;
+          const std::vector<int> part = slab.ball(c, r);
+          EXPECT_TRUE(std::includes(held.begin(), held.end(), part.begin(), part.end()));
+        }
+      }
+      // A halo of cells_for(h) cells around a core [a', b'] covers every ball of radius h centred in it.
+      const double h = rng.uniform() * 0.3;
+      const std::int64_t k = whole.cells_for(h);
+      const detail::PointGrid halo(whole, a + k, b - k);  // core [a + 2k, b - 2k] ... its halo is [a + k, b - k]
+      for (int p : expect) {
+        const int one[1] = {p};
+        const std::int64_t c = whole.first_axis_range(one).first;
+        if (c >= a + 2 * k && c <= b - 2 * k) {
+          EXPECT_TRUE(halo.covers(P.point(p), h)) << p;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(seen, (std::map<std::string, int>{{"cells", 4}, {"dense", 4}, {"lines", 4}}));
+  EXPECT_GT(covered, 100);
+  EXPECT_GT(not_covered, 100);
+}
+
 TEST(PointGrid, SupersetAtAdversarialMagnitudes) {
   Rng rng(2024);
   for (double scale : {1e-310, 4e-323, 1e-300, 1.0, 1e300, 1e308, DBL_MAX}) {

@@ -43,6 +43,20 @@ same octahedron-flipped 1 --manifold builtin:sphere-2 --points "$fixtures/points
 # Exact ties (never CERTIFIED).
 same cocircular 1 --manifold builtin:sphere-2 --points "$fixtures/certify/sphere-cocircular.txt"
 
+# Rank 1 holds its block and a halo only. A fixed halo far too small (two cells): check 7's
+# neighbourhoods (5 eps) leave it, and rank 0 reports those simplices as not evaluated, with the
+# reason (check 7 is not claimed here, so the verdict stands on the other checks; the in-process
+# test Distributed.HaloTooSmallIsUndecidedUnlessWidened also makes stars leave it: UNDECIDED).
+status=0
+"$mpiexec" -n 2 "$bin/delcert-certify" --manifold builtin:sphere-2 --points s2.pts --skip-restricted --halo 1e-6 \
+  --threads 1 --out halo.json > halo.txt 2> halo.err || status=$?
+if [ "$status" != 0 ] || ! grep -q '"not_evaluated_halo_too_small"' halo.json || ! grep -q "halo too small" halo.txt; then
+  echo "FAIL fixed halo too small: exit $status, or check 7 does not report the halo"; cat halo.err halo.txt
+  failures=$((failures + 1))
+else
+  echo "ok   fixed halo too small (check 7: $(grep -o '[0-9]* not evaluated (an MPI rank.s halo too small)' halo.txt))"
+fi
+
 # Bad input: exit 2 from every rank, the message once, no certificate.
 status=0
 "$mpiexec" -n 2 "$bin/delcert-certify" --manifold builtin:sphere-2 --points "$fixtures/bad/points-nan.txt" \
