@@ -31,8 +31,9 @@
 //
 // --mpi-ranks K (with delcert-certify built with -DDELCERT_MPI=ON; --mpiexec, default mpirun): for
 // each certify case also `delcert-certify --threads 1` and `MPIEXEC -n K delcert-certify --threads 1`
-// (--no-times both), their wall times, the peak resident size of the largest process (wait4 counts
-// the ranks, mpirun's children) and whether the two certificates are the same bytes.
+// (--no-times both), their wall times, the peak resident size of each rank (every rank runs under
+// this program as a wrapper, --wrap-rank-rss, which wait4s it) and whether the two certificates
+// are the same bytes.
 //
 // --keep DIR: write the inputs and outputs (points, complexes, certificates) to DIR and keep them.
 //
@@ -199,6 +200,16 @@ int main(int argc, char** argv) {
   int mpi_ranks = 0;
   std::string mpiexec = "mpirun";
   std::filesystem::path bin = std::filesystem::canonical("/proc/self/exe").parent_path().parent_path(), keep;
+  // One MPI rank, wrapped (see --mpi-ranks): runs the command and writes its peak resident size in
+  // MB to PREFIX.RANK (the rank from Open MPI's, PMI's or Slurm's environment); exits with its status.
+  if (argc > 3 && std::string(argv[1]) == "--wrap-rank-rss") {
+    const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank) rank = std::getenv("PMI_RANK");
+    if (!rank) rank = std::getenv("SLURM_PROCID");
+    const Run r = run(std::vector<std::string>(argv + 3, argv + argc));
+    std::ofstream(std::string(argv[2]) + "." + (rank ? rank : "0")) << r.rss_mb << "\n";
+    return r.status < 0 ? 3 : r.status;
+  }
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -322,7 +333,10 @@ int main(int argc, char** argv) {
       if (mpi_ranks > 0) {
         std::fprintf(stderr, "bench_scaling: %s %zu: delcert-certify on 1 process and on %d MPI ranks, 1 thread each\n",
                      c.manifold.c_str(), c.count, mpi_ranks);
-        std::vector<std::string> one = args, many = {mpiexec, "-n", std::to_string(mpi_ranks)};
+        const std::string rss_prefix = cert + ".rss";  // each rank's peak, written by its wrapper (above)
+        std::vector<std::string> one = args, many = {mpiexec, "-n", std::to_string(mpi_ranks),
+                                                      std::filesystem::canonical("/proc/self/exe").string(),
+                                                      "--wrap-rank-rss", rss_prefix};
         one[std::find(one.begin(), one.end(), "--threads") - one.begin() + 1] = "1";
         one.insert(one.begin() + 1, "--no-times");
         many.insert(many.end(), one.begin(), one.end());
@@ -330,9 +344,17 @@ int main(int argc, char** argv) {
         *std::find(one.begin(), one.end(), cert) = cert + ".one";
         const Run a = run(one), b = run(many);
         const auto bytes = [](const std::string& f) { std::ifstream in(f, std::ios::binary); return std::string(std::istreambuf_iterator<char>(in), {}); };
+        json per_rank = json::array();
+        for (int r = 0; r < mpi_ranks; ++r) {
+          const std::string f = rss_prefix + "." + std::to_string(r);
+          double mb = -1;
+          std::ifstream(f) >> mb;
+          per_rank.push_back(mb);
+          std::filesystem::remove(f);
+        }
         e["certify_mpi"] = json{{"ranks", mpi_ranks}, {"one_process_wall_s", a.wall}, {"ranks_wall_s", b.wall},
                                 {"speedup", b.wall > 0 ? a.wall / b.wall : 0.0}, {"one_process_peak_rss_mb", a.rss_mb},
-                                {"largest_rank_peak_rss_mb", b.rss_mb}, {"exit", {a.status, b.status}},
+                                {"rank_peak_rss_mb", per_rank}, {"exit", {a.status, b.status}},
                                 {"certificates_identical", a.status == b.status && bytes(cert + ".one") == bytes(cert + ".mpi")}};
         std::filesystem::remove(cert + ".one"), std::filesystem::remove(cert + ".mpi");
       }
@@ -428,11 +450,13 @@ int main(int argc, char** argv) {
   for (const auto& e : doc["cases"])
     if (e.contains("certify_mpi")) {
       const json& r = e["certify_mpi"];
-      std::fprintf(stderr, "certify on MPI ranks, %s %zu: 1 process %.1f s, %d ranks %.1f s (%.2fx); peak %.0f MB vs %.0f MB "
-                   "per rank; certificates %s\n", e["manifold"].get<std::string>().c_str(), e["points"].get<std::size_t>(),
-                   r["one_process_wall_s"].get<double>(), r["ranks"].get<int>(), r["ranks_wall_s"].get<double>(),
-                   r["speedup"].get<double>(), r["one_process_peak_rss_mb"].get<double>(), r["largest_rank_peak_rss_mb"].get<double>(),
-                   r["certificates_identical"].get<bool>() ? "identical" : "DIFFERENT");
+      std::string ranks;
+      for (const auto& mb : r["rank_peak_rss_mb"]) ranks += (ranks.empty() ? "" : ", ") + std::to_string(std::lround(mb.get<double>()));
+      std::fprintf(stderr, "certify on MPI ranks, %s %zu: 1 process %.1f s, %d ranks %.1f s (%.2fx); peak %.0f MB for the "
+                   "process, MB per rank (rank 0 first): %s; certificates %s\n", e["manifold"].get<std::string>().c_str(),
+                   e["points"].get<std::size_t>(), r["one_process_wall_s"].get<double>(), r["ranks"].get<int>(),
+                   r["ranks_wall_s"].get<double>(), r["speedup"].get<double>(), r["one_process_peak_rss_mb"].get<double>(),
+                   ranks.c_str(), r["certificates_identical"].get<bool>() ? "identical" : "DIFFERENT");
     }
   std::printf("%s\n", doc.dump(2).c_str());
   return 0;

@@ -3,12 +3,14 @@
 //   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted|intrinsic]
 //                   [--complex-format auto|delcert|off|obj|ply|stl|gudhi] [--residual-tolerance T]
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
-//                   [--skip-restricted] [--report REPORT.html]
+//                   [--skip-restricted] [--report REPORT.html] [--halo H]   (MPI runs: docs/design.md §4.11)
 //
 // Prints one line per check and, last, "verdict: CERTIFIED|REFUTED|UNDECIDED".
 // Exit status: 0 CERTIFIED, 1 REFUTED, 3 UNDECIDED, 2 bad input or usage (no certificate written).
 #include <CLI/CLI.hpp>
 
+#include <cfloat>
+#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <regex>
@@ -56,7 +58,11 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))->capture_default_str();
   app.add_option("--halo", o.halo, "MPI runs: the distance around its own points up to which each rank but 0 holds the others; a point whose searches need more is UNDECIDED (default: automatic, widened as needed)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator([](std::string& v) {
+        double h = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), h);
+        return ec == std::errc() && end == v.data() + v.size() && h > 0 && h <= DBL_MAX ? std::string() : "not a positive distance: " + v;
+      }, "POSITIVE"));
   app.add_flag("--no-times", no_times, "leave wall-clock times out of the certificate (byte-identical reruns)");
   try {
     app.parse(argc, argv);

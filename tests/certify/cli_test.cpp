@@ -167,6 +167,22 @@ TEST(Cli, ThreadsDefaultToAllCoresAndRefusalsAreShort) {
   EXPECT_LT(r.err.size(), 200u) << r.err;
 }
 
+// --halo (MPI runs) is a positive distance; in one process it changes nothing, not even a byte.
+TEST(Cli, HaloIsAPositiveDistanceAndIgnoredInOneProcess) {
+  TempDir dir("halo");
+  const std::string base = binary() + " --manifold builtin:sphere-2 --points " + q(fixture("points/octahedron.off")) +
+                           " --complex " + q(fixture("certify/octahedron-flipped.complex")) + " --no-times --threads 1";
+  for (const char* bad : {"0", "-1", "nan", "wide"}) {
+    RunResult r = run(base + " --halo " + bad, dir);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--halo"), std::string::npos) << r.err;
+  }
+  RunResult a = run(base + " --out " + q(dir.file("a.json")), dir), b = run(base + " --halo 1e-9 --out " + q(dir.file("b.json")), dir);
+  EXPECT_EQ(a.exit_code, 1);
+  EXPECT_EQ(b.exit_code, 1);
+  EXPECT_EQ(read_text(dir.file("a.json")), read_text(dir.file("b.json")));
+}
+
 // Each input is read once, and the certificate hashes exactly the bytes that were checked. A FIFO
 // can be read only once: the run must end, naming the hash of what went through it (an earlier
 // version read the spec a second time to hash it and blocked here, or hashed other bytes).

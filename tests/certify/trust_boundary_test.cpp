@@ -193,8 +193,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // net): 10458; the work of checks 1, 2 and 8 on the threads (check 2's passes in blocks with
   // their merge, the m = 2 links, the face index) and check 1's rank from the Krawczyk box (~60):
   // 10519; check 1's residuals from exact dyadic enclosures, the rational ones only where they
-  // decide (the tolerance, the largest residual's candidates), ~25 net: 10576, so 10600.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 10600) << "certify/ should stay small enough to read whole";
+  // decide (the tolerance, the largest residual's candidates), ~25 net: 10576, so 10600. Each MPI
+  // rank's part and halo (issue 14): the grid's slab with covers() and cells_for() and their
+  // proofs (~110), the driver's widening loop, per-block result slots and the halo's reports
+  // (~80), the two searches' coverage tests (~20): 10784, so 10800.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 10800) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
