@@ -214,7 +214,7 @@ ComplexFile parse_complex(const std::string& text, const std::string& file, cons
   std::vector<long> line_of;
   const bool binary_mesh = options.format == ComplexFormat::ply || options.format == ComplexFormat::stl;
   // A binary mesh is not split into lines (its bytes are not text).
-  const detail::Lines lines = binary_mesh ? detail::Lines{} : detail::split_lines(text), none;
+  const detail::Lines lines = binary_mesh ? detail::Lines{} : detail::split_lines(text), none;  // (a line is tokenised when read)
   ComplexFormat format = options.format;
   if (format == ComplexFormat::automatic)
     format = detect_format(text, file, detect_mesh_format(text, file) ? none : lines);
@@ -240,7 +240,7 @@ ComplexFile parse_complex(const std::string& text, const std::string& file, cons
     return out;
   }
   if (lines.empty()) throw InputError(file, 0, "empty file; expected a 'delcert-complex v1' or 'OFF' header");
-  const Line& head = lines[0];
+  const Line head = lines[0];
   std::string tag(head.tokens[0]);
   if (format == ComplexFormat::delcert && tag != "delcert-complex")
     throw InputError(file, head.number, "--complex-format delcert: expected the first line 'delcert-complex v1', found '" + tag + "'");
@@ -274,7 +274,7 @@ ComplexFile parse_complex(const std::string& text, const std::string& file, cons
     std::size_t nv = pf.points.size();
     // The counts line is the first line after "OFF" (or on the same line).
     std::size_t counts_idx = head.tokens.size() > 1 ? 0 : 1;
-    const auto& ct = lines[counts_idx].tokens;
+    const auto ct = lines[counts_idx].tokens;
     std::size_t off = counts_idx == 0 ? 1 : 0;
     out.counts_line = lines[counts_idx].number;
     long nf = parse_count(ct[off + 1], file, lines[counts_idx].number, "the face count");
@@ -285,7 +285,7 @@ ComplexFile parse_complex(const std::string& text, const std::string& file, cons
                            std::to_string(lines.size() - first_face));
     out.complex.num_vertices = nv;
     for (std::size_t i = first_face; i < lines.size(); ++i) {
-      const auto& t = lines[i].tokens;
+      const auto t = lines[i].tokens;
       long k = parse_count(t[0], file, lines[i].number, "the face size");
       if (k != 3) throw InputError(file, lines[i].number, "face has " + std::to_string(k) + " vertices; only triangles are simplicial");
       if (t.size() < 4) throw InputError(file, lines[i].number, "triangle lists fewer than 3 vertices");

@@ -30,7 +30,7 @@ void read_coordinate_lines(const detail::Lines& lines, std::size_t first, long c
   }
   out.coordinates.reserve(static_cast<std::size_t>(count) * dim);
   for (long i = 0; i < count; ++i) {
-    const Line& l = lines[first + i];
+    const Line l = lines[first + i];
     if (static_cast<int>(l.tokens.size()) != dim)
       throw InputError(file, l.number,
                        "point has " + std::to_string(l.tokens.size()) + " coordinates, expected " + std::to_string(dim));
@@ -73,7 +73,7 @@ PointsFile parse_points_file(const std::string& text, const std::string& file, c
   }
   auto lines = detail::split_lines(text);
   if (lines.empty()) throw InputError(file, 0, "empty file; expected a 'delcert-points v1', 'OFF' or 'nOFF' header");
-  const Line& head = lines[0];
+  const Line head = lines[0];
   PointsFile out;
   PointSet& ps = out.points;
   std::vector<long>& line_of_point = out.lines;

@@ -1,5 +1,6 @@
 #include "io/detail/text_lines.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -7,33 +8,55 @@
 
 namespace delcert::io::detail {
 
+namespace {
+
+// The line starting at `start` (up to its newline), without its '#' comment.
+std::string_view line_at(const std::string& text, std::size_t start) {
+  std::size_t end = text.find('\n', start);
+  if (end == std::string::npos) end = text.size();
+  std::string_view line(text.data() + start, end - start);
+  if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+  return line;
+}
+
+bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+}  // namespace
+
+void Tokens::push_back(std::string_view t) {
+  if (n_ < kInline) {
+    in_place_[n_++] = t;
+    return;
+  }
+  if (n_ == kInline) heap_.assign(in_place_.begin(), in_place_.end());
+  heap_.push_back(t), ++n_;
+}
+
+Line Lines::operator[](std::size_t i) const {
+  Line l{number_[i], {}};
+  const std::string_view line = line_at(*text_, start_[i]);
+  std::size_t k = 0;
+  while (k < line.size()) {
+    while (k < line.size() && blank(line[k])) ++k;
+    const std::size_t s = k;
+    while (k < line.size() && !blank(line[k])) ++k;
+    if (k > s) l.tokens.push_back(line.substr(s, k - s));
+  }
+  return l;
+}
+
 Lines split_lines(const std::string& text) {
   Lines out;
-  std::vector<std::size_t> first;  // each line's first token in out.tokens_ (spans are set at the end:
-                                   // the array moves while it grows)
+  out.text_ = &text;
   long number = 0;
   std::size_t pos = 0;
   while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
+    const std::string_view line = line_at(text, pos);
     ++number;
-    std::string_view line(text.data() + pos, end - pos);
-    pos = end + 1;
-    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    const std::size_t begin = out.tokens_.size();
-    std::size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-      std::size_t s = i;
-      while (i < line.size() && !(line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-      if (i > s) out.tokens_.push_back(line.substr(s, i - s));
-    }
-    if (out.tokens_.size() > begin) out.lines_.push_back({number, {}}), first.push_back(begin);
-  }
-  out.tokens_.shrink_to_fit();
-  for (std::size_t l = 0; l < out.lines_.size(); ++l) {
-    const std::size_t e = l + 1 < first.size() ? first[l + 1] : out.tokens_.size();
-    out.lines_[l].tokens = std::span<const std::string_view>(out.tokens_.data() + first[l], e - first[l]);
+    if (std::any_of(line.begin(), line.end(), [](char c) { return !blank(c); }))
+      out.number_.push_back(number), out.start_.push_back(pos);
+    const std::size_t end = text.find('\n', pos);
+    pos = end == std::string::npos ? text.size() : end + 1;
   }
   return out;
 }

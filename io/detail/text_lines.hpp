@@ -2,6 +2,7 @@
 // skipping blank lines and '#' comments, and parses numbers strictly.
 #pragma once
 
+#include <array>
 #include <span>
 #include <string>
 #include <string_view>
@@ -9,33 +10,59 @@
 
 namespace delcert::io::detail {
 
-struct Line {
-  long number;                               // 1-based line number in the file
-  std::span<const std::string_view> tokens;  // views into the text, stored by the Lines
+// One line's tokens: views into the text, the first eight held in place (no allocation for a
+// usual line: a point, a simplex).
+class Tokens {
+ public:
+  std::size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  std::string_view operator[](std::size_t i) const { return data()[i]; }
+  const std::string_view* begin() const { return data(); }
+  const std::string_view* end() const { return data() + n_; }
+  operator std::span<const std::string_view>() const { return {data(), n_}; }
+  void push_back(std::string_view t);
+
+ private:
+  static constexpr std::size_t kInline = 8;
+  const std::string_view* data() const { return n_ <= kInline ? in_place_.data() : heap_.data(); }
+  std::array<std::string_view, kInline> in_place_{};
+  std::vector<std::string_view> heap_;  // every token, once there are more than kInline
+  std::size_t n_ = 0;
 };
 
-// Every non-empty, non-comment line of a text, their tokens in one array: no allocation per line
-// (1M points are 1M lines; a vector of tokens per line took about 150 bytes each). The text must
-// outlive it. Movable, not copyable (the lines' spans point into its own token array, which a
-// move keeps in place).
+struct Line {
+  long number;    // 1-based line number in the file
+  Tokens tokens;  // views into the text
+};
+
+// Every non-empty, non-comment line of a text, 16 bytes each (its number and where it starts):
+// a line is split into tokens when it is read (lines[i], or the iteration), so a file of 1M
+// points does not hold 3M token views at once. The text must outlive it.
 class Lines {
  public:
-  Lines() = default;
-  Lines(Lines&&) = default;
-  Lines& operator=(Lines&&) = default;
-  Lines(const Lines&) = delete;
-  Lines& operator=(const Lines&) = delete;
-  std::size_t size() const { return lines_.size(); }
-  bool empty() const { return lines_.empty(); }
-  const Line& operator[](std::size_t i) const { return lines_[i]; }
-  const Line& back() const { return lines_.back(); }
-  std::vector<Line>::const_iterator begin() const { return lines_.begin(); }
-  std::vector<Line>::const_iterator end() const { return lines_.end(); }
+  std::size_t size() const { return number_.size(); }
+  bool empty() const { return number_.empty(); }
+  Line operator[](std::size_t i) const;
+  Line back() const { return (*this)[size() - 1]; }
+  class iterator {
+   public:
+    iterator(const Lines* lines, std::size_t i) : lines_(lines), i_(i) {}
+    Line operator*() const { return (*lines_)[i_]; }
+    iterator& operator++() { return ++i_, *this; }
+    bool operator!=(const iterator& o) const { return i_ != o.i_; }
+
+   private:
+    const Lines* lines_;
+    std::size_t i_;
+  };
+  iterator begin() const { return {this, 0}; }
+  iterator end() const { return {this, size()}; }
 
  private:
   friend Lines split_lines(const std::string& text);
-  std::vector<std::string_view> tokens_;
-  std::vector<Line> lines_;
+  const std::string* text_ = nullptr;
+  std::vector<long> number_;
+  std::vector<std::size_t> start_;  // offset of the line in the text
 };
 
 Lines split_lines(const std::string& text);
