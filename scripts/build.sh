@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Configures and builds delcert into build/ (Release). Arguments go to cmake's configure step; names
 # after "--" are the targets to build (default: everything, every test and benchmark included):
-#   bash scripts/build.sh -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -- delcert delcert-certify
+#   bash scripts/build.sh -DDELCERT_BUILD_BENCH=OFF -- delcert delcert-certify
+# ccache is used when installed (scripts/compiler_cache.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=${JOBS:-$(nproc)}
@@ -18,7 +19,8 @@ while [ $# -gt 0 ]; do
   if [ "$1" = "--" ]; then shift; targets=("$@"); break; fi
   configure+=("$1"); shift
 done
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "${python[@]}" "${configure[@]}" >/dev/null
+source scripts/compiler_cache.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${CACHE_ARGS[@]}" "${werror[@]}" "${python[@]}" "${configure[@]}" >/dev/null
 if [ ${#targets[@]} -gt 0 ]; then
   cmake --build build -j "$JOBS" --target "${targets[@]}"
 else

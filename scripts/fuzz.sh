@@ -18,7 +18,8 @@ targets=(${DELCERT_FUZZ_TARGETS:-points complex spec claims polynomial})
 seed=${DELCERT_FUZZ_SEED:-1}
 max_len=${DELCERT_FUZZ_MAX_LEN:-4096}
 bash scripts/setup.sh
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDELCERT_FUZZ=ON >/dev/null
+source scripts/compiler_cache.sh
+CC=clang CXX=clang++ cmake -S . -B build-fuzz "${CACHE_ARGS[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDELCERT_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j "${JOBS:-$(nproc)}" --target "${targets[@]/#/fuzz_}" >/dev/null
 
 # Seeds: every text fixture for the two text readers (each detects its format from the first

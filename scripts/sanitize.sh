@@ -15,7 +15,8 @@ if [ -n "${DELCERT_WERROR:-}" ]; then werror=(-DDELCERT_WERROR="$DELCERT_WERROR"
 # RelWithDebInfo at -O1: line numbers in the reports, and fast enough to run the suite.
 # No Python module (DELCERT_PYTHON=OFF): an ASan-instrumented extension cannot be loaded into the
 # uninstrumented python3, and the module's code is the libraries' code, which the suite covers.
-CC=gcc CXX=g++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+source scripts/compiler_cache.sh
+CC=gcc CXX=g++ cmake -S . -B build-asan "${CACHE_ARGS[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DDELCERT_BUILD_BENCH=OFF -DDELCERT_BUILD_TESTS=ON -DDELCERT_PYTHON=OFF "${werror[@]}" "$@" >/dev/null
 cmake --build build-asan -j "${JOBS:-$(nproc)}"

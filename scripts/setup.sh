@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages delcert needs, if any is missing.
+# Installs the Debian packages delcert needs, if any is missing. ccache is the compiler cache
+# scripts/build.sh, sanitize.sh and fuzz.sh use (scripts/compiler_cache.sh).
 # Idempotent and quiet when everything is present; runs `apt-get update` only when something is missing.
 # Then fetches the pinned three.js for the HTML report (scripts/fetch_threejs.sh), once.
 set -euo pipefail
@@ -10,7 +11,7 @@ set -euo pipefail
 # chromium (headless) opens the HTML report in its test (tests/report/, label browser; python3 runs it); curl, ca-certificates
 # and openssl fetch and check the pinned three.js the report inlines (scripts/fetch_threejs.sh, after the packages).
 # libopenmpi-dev and openmpi-bin (mpirun) build and test delcert-certify as an MPI program (-DDELCERT_MPI=ON).
-PACKAGES=(build-essential cmake pkg-config libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
+PACKAGES=(build-essential cmake pkg-config ccache libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libgtest-dev libtbb-dev nlohmann-json3-dev libcli11-dev libmpfi-dev libgudhi-dev regina-normal-dev
           clang libclang-rt-14-dev
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-gudhi

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "tests/test_paths.hpp"
 
 namespace delcert::test {
 

@@ -24,6 +24,7 @@
 #include "io/complex.hpp"
 #include "io/points.hpp"
 #include "io/spec.hpp"
+#include "tests/test_paths.hpp"
 
 namespace delcert::certify::test {
 

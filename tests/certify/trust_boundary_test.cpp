@@ -13,6 +13,7 @@
 #include <regex>
 #include <string>
 #include <vector>
+#include "tests/test_paths.hpp"
 
 namespace {
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "fuzz/readers.hpp"
+#include "tests/test_paths.hpp"
 
 namespace {
 

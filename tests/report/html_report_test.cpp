@@ -9,6 +9,7 @@
 #include "io/complex.hpp"
 #include "io/points.hpp"
 #include "report/html_report.hpp"
+#include "tests/test_paths.hpp"
 
 namespace delcert::report {
 namespace {

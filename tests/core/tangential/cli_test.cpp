@@ -17,6 +17,7 @@
 #include "io/complex.hpp"
 #include "io/points.hpp"
 #include "tests/core/tangential/test_support.hpp"
+#include "tests/test_paths.hpp"
 
 namespace delcert::tangential {
 namespace {
