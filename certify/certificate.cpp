@@ -1,5 +1,7 @@
 #include "certify/certificate.hpp"
 
+#include <algorithm>
+
 #include "exact/number_types.hpp"
 #include "exact/polynomial.hpp"
 #include "io/points.hpp"
@@ -54,9 +56,53 @@ void CheckEntry::require_at_most(std::string what, double certified_upper_bound,
   requirements.push_back({std::move(what), certified_upper_bound, false, exact::enclose(bound).hi, bound.get_str()});
 }
 
+void CheckEntry::bound_proven_whatever_the_verdict(std::string pointer, double value, std::string why) {
+  proven_whatever_the_verdict.push_back({std::move(pointer), value, std::move(why)});
+}
+
+Verdict CheckEntry::decision() const {
+  if (verdict != Verdict::report || !details.is_object() || !details.contains("decision")) return verdict;
+  const json& d = details["decision"];
+  for (Verdict v : {Verdict::certified, Verdict::refuted, Verdict::undecided})
+    if (d.is_string() && d.get<std::string>() == to_string(v)) return v;
+  return Verdict::report;
+}
+
+namespace {
+
+// Every key named certified_upper_bound or certified_lower_bound in `j`, with its JSON pointer.
+void certified_keys(const json& j, const std::string& at, std::vector<std::pair<std::string, const json*>>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      std::string key;  // JSON pointer escaping (RFC 6901)
+      for (char ch : k) key += ch == '~' ? std::string("~0") : ch == '/' ? std::string("~1") : std::string(1, ch);
+      if (k == "certified_upper_bound" || k == "certified_lower_bound") out.emplace_back(at + "/" + key, &v);
+      certified_keys(v, at + "/" + key, out);
+    }
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) certified_keys(j[i], at + "/" + std::to_string(i), out);
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> Certificate::self_check_failures() const {
   std::vector<std::string> out;
   for (const auto& c : checks) {
+    if (c.decision() == Verdict::undecided) {
+      std::vector<std::pair<std::string, const json*>> keys;
+      certified_keys(c.margin, "/margin", keys);
+      certified_keys(c.details, "/details", keys);
+      certified_keys(c.witnesses, "/witnesses", keys);
+      for (const auto& [at, v] : keys) {
+        const std::string text = v->is_string() ? v->get<std::string>() : v->dump();
+        const auto& P = c.proven_whatever_the_verdict;
+        const bool ok = std::any_of(P.begin(), P.end(), [&](const auto& b) { return b.pointer == at && num(b.value) == text; });
+        if (!ok)
+          out.push_back("check " + std::to_string(c.number()) + " (" + c.name() + ") is UNDECIDED but prints " + at + " = " +
+                        text + ", a bound its verdict does not prove");
+      }
+    }
     if (c.verdict != Verdict::certified) continue;
     for (const auto& r : c.requirements) {
       // Written so that NaN fails too.
@@ -153,6 +199,11 @@ json enclosure_json(const exact::Interval& iv) { return json::array({num(iv.lo),
 
 json lower_bound_json(const exact::Interval& iv) {
   return {{"certified_lower_bound", num(iv.lo)}, {"enclosure", enclosure_json(iv)}};
+}
+
+json over_determined_json(const exact::Interval& iv) {
+  return {{"over_the_determined_only", enclosure_json(iv)},
+          {"bound", "none: some members were not determined, and the extremum over all of them may lie beyond"}};
 }
 
 json rational_json(const mpq_class& q) {

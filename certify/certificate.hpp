@@ -66,6 +66,24 @@ struct CheckEntry {
   void require_at_least(std::string what, double certified_lower_bound, const mpq_class& bound);
   void require_at_most(std::string what, double certified_upper_bound, const mpq_class& bound);
 
+  // The second half of the guard: the bounds an UNDECIDED check may print. A key named `certified_upper_bound` or
+  // `certified_lower_bound` is a proven bound, or it is not printed; but what an UNDECIDED check computed is often
+  // proven only under the argument it could not complete (check 11's upper bound over the decided boxes). So an
+  // entry whose decision is UNDECIDED (decision() below) may print such a key only where it registered the printed
+  // value here as proven whatever its verdict, with the reason (e.g. the distance to P of a certified restricted
+  // Voronoi vertex). `pointer` is the key's JSON pointer in the entry ("/margin/covering_radius/certified_lower_bound");
+  // the guard walks the whole entry (margin, details, witnesses) and fails a key that is not registered or whose
+  // printed text is not num(value).
+  struct ProvenBound {
+    std::string pointer;
+    double value = 0;
+    std::string why;
+  };
+  std::vector<ProvenBound> proven_whatever_the_verdict;
+  void bound_proven_whatever_the_verdict(std::string pointer, double value, std::string why);
+  // The verdict, or for a REPORT entry that records one (details.decision, a check that is not claimed) that one.
+  Verdict decision() const;
+
   int number() const { return check_number(id); }
   const char* name() const { return check_name(id); }
 };
@@ -80,8 +98,9 @@ struct Certificate {
 
   // REFUTED if any check is refuted, else UNDECIDED if any is undecided, else CERTIFIED.
   Verdict overall() const;
-  // One line per violated requirement of a CERTIFIED check (see CheckEntry::requirements); empty
-  // when the certificate is consistent with itself.
+  // One line per violated requirement of a CERTIFIED check (see CheckEntry::requirements) and per
+  // certified bound an UNDECIDED check prints without having registered it as proven whatever the
+  // verdict (CheckEntry::proven_whatever_the_verdict); empty when the certificate is consistent with itself.
   std::vector<std::string> self_check_failures() const;
   // `with_times = false` leaves the only non-deterministic field out (byte-identical reruns).
   nlohmann::json to_json(bool with_times = true) const;
@@ -104,6 +123,9 @@ std::string num(double x);
 nlohmann::json enclosure_json(const exact::Interval& iv);
 // {"certified_lower_bound": lo, "enclosure": [lo, hi]} for a certified quantity.
 nlohmann::json lower_bound_json(const exact::Interval& iv);
+// An extremum taken over the determined members of a set only (a check UNDECIDED because some were not determined):
+// {"over_the_determined_only": [lo, hi], "bound": "none ..."}, with no certified_* key, since it bounds nothing.
+nlohmann::json over_determined_json(const exact::Interval& iv);
 // An exact rational: its text when short, else its enclosure.
 nlohmann::json rational_json(const mpq_class& q);
 nlohmann::json ints_json(const std::vector<int>& v);

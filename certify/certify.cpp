@@ -498,6 +498,7 @@ struct ProtectionResult {
   CheckEntry entry{CheckId::power_protection};
   long cells = 0;                                 // star cells seen (certified or not)
   exact::Interval min_margin{INFINITY, INFINITY};  // over the certified cells
+  bool all_determined = true;                      // every star and star cell determined: min_margin bounds them all
 };
 
 ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq_class>& claim) {
@@ -506,9 +507,10 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
   exact::Interval& min_margin = R.min_margin;
   json margin_at;
   long ties = 0, below_claim = 0;
+  bool& all_determined = R.all_determined;  // else min_margin is a minimum over some cells only, not a bound over all
   for (const auto& r : st.reports) {
     if (r.state == StarReport::State::incomplete) {
-      prot.undecide("some stars could not be determined");
+      prot.undecide("some stars could not be determined"), all_determined = false;
       continue;
     }
     R.cells += r.cells;
@@ -517,7 +519,7 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
     min_margin = {std::min(min_margin.lo, r.min_margin.lo), std::min(min_margin.hi, r.min_margin.hi)};
     for (const auto& c : r.star) {  // (kept when a cell is a witness)
       if (c.degenerate || c.conflict >= 0) {
-        prot.undecide("a star cell could not be certified");
+        prot.undecide("a star cell could not be certified"), all_determined = false;
         continue;
       }
       if (c.tie >= 0) {
@@ -539,13 +541,15 @@ ProtectionResult check_power_protection(const Stars& st, const std::optional<mpq
     // What the verdict implies about the printed bound (the consistency guard, certificate.hpp).
     prot.require_at_least("min_power_margin", min_margin.lo, 0);
     if (claim) prot.require_at_least("min_power_margin", min_margin.lo, *claim);
-    prot.margin = {{"min_power_margin", lower_bound_json(min_margin)}, {"attained_near", margin_at}};
+    prot.margin = {{"min_power_margin", all_determined ? lower_bound_json(min_margin) : over_determined_json(min_margin)},
+                   {"attained_near", margin_at}};
   }
   prot.details = {{"star_cells", R.cells}, {"exact_ties", ties}, {"below_claim", below_claim}};
   if (claim)
     prot.claim = {{"power_protection", exact::rational_to_string(*claim)},
                   {"meaning", "|c_p(s) - q|^2 - R_p(s)^2 > power_protection for every star simplex s at p and q not in s"}};
-  prot.summary = "min power margin >= " + num(min_margin.lo) + " (enclosure [" + num(min_margin.lo) + ", " +
+  prot.summary = (all_determined ? "min power margin >= " : "min power margin over the determined cells only (no bound) ") +
+                 num(min_margin.lo) + " (enclosure [" + num(min_margin.lo) + ", " +
                  num(min_margin.hi) + "]) over " + std::to_string(R.cells) + " star cells; " + std::to_string(ties) +
                  " exact ties" +
                  (claim ? "; " + std::to_string(below_claim) + " not above the claim " + exact::rational_to_string(*claim) : "");
@@ -557,6 +561,7 @@ struct RadiusResult {
   CheckEntry entry{CheckId::star_radius};
   long cells = 0;                                 // star cells seen (certified or not)
   exact::Interval max_r2{-INFINITY, -INFINITY};   // of R_p(s)^2 over the certified cells
+  bool all_determined = true;                     // every star determined: max_r2 bounds them all
 };
 
 // With a per-point claim (claims v3), eps is eps(p) at each star's point p: `per_point` holds them
@@ -573,9 +578,10 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   exact::Interval& max_r2 = R.max_r2;
   json radius_at;
   long too_big = 0;
+  bool& all_determined = R.all_determined;  // else max_r2 is a maximum over some stars only, not a bound over all
   for (const auto& r : st.reports) {
     if (r.state == StarReport::State::incomplete) {
-      radius.undecide("some stars could not be determined");
+      radius.undecide("some stars could not be determined"), all_determined = false;
       continue;
     }
     R.cells += r.cells;
@@ -598,7 +604,9 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   if (R.cells) {
     // What the verdict implies about the printed bound (the consistency guard, certificate.hpp).
     if (claimed) radius.require_at_most("max_radius_squared", max_r2.hi, eps_max * eps_max);
-    radius.margin = {{"max_radius_squared", {{"certified_upper_bound", num(max_r2.hi)}, {"enclosure", enclosure_json(max_r2)}}},
+    radius.margin = {{"max_radius_squared", all_determined ? json{{"certified_upper_bound", num(max_r2.hi)},
+                                                                  {"enclosure", enclosure_json(max_r2)}}
+                                                            : over_determined_json(max_r2)},
                      {"attained_at", radius_at}};
   }
   radius.details = {{"star_cells", R.cells}, {"not_below_eps", too_big}};
@@ -612,7 +620,8 @@ RadiusResult check_star_radius(const Stars& st, const std::optional<mpq_class>& 
   } else if (radius.verdict == Verdict::certified) {
     radius.verdict = Verdict::report;
   }
-  radius.summary = "max R_p(s)^2 <= " + num(max_r2.hi) +
+  radius.summary = (all_determined ? "max R_p(s)^2 <= " : "max R_p(s)^2 over the determined stars only (no bound) ") +
+                   num(max_r2.hi) +
                    (eps         ? "; " + std::to_string(too_big) + " star cells with R_p(s) >= star_radius = " +
                                       exact::rational_to_string(*eps)
                     : per_point ? "; " + std::to_string(too_big) + " star cells at p with R_p(s) >= eps(p) (" +
@@ -840,7 +849,12 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   const bool anchored = !R.simplices.empty();
   if (!R.covering_certified) cov.undecide(R.reason);
   else if (!anchored) cov.undecide("no restricted Voronoi vertex was found: no component of M is known to be sampled");
-  // A certified lower bound of max_x d(x, P): the farthest restricted Voronoi vertex found.
+  // R.covering (and every cell's covering_bound) bounds d(x, P) only under the covering argument: when it
+  // fails they are maxima over the decided boxes, below the truth as often as not (the 16 vertices of a
+  // tesseract on S^3: 0.99253 where the covering radius is 1). They are printed as certified only then.
+  const bool upper_proven = R.covering_certified && anchored;
+  // A certified lower bound of max_x d(x, P), proven in every case: the farthest restricted Voronoi vertex found
+  // (a point of M whose nearest sample points are its simplex's, each certified on its own).
   const double lower = R.vertex_distance_lower;
   if (claim) {
     cov.claim = {{"covering", exact::rational_to_string(*claim)},
@@ -886,7 +900,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
     // The cells whose certified bound is not below eps(p), and the tightest one (largest bound / eps(p)).
     long not_below = 0;
     double worst = -1;
-    for (std::size_t p = 0; p < R.cells.size() && p < per_point->size(); ++p) {
+    for (std::size_t p = 0; upper_proven && p < R.cells.size() && p < per_point->size(); ++p) {
       const exact::Interval e = exact::enclose((*per_point)[p]);
       const double ratio = R.cells[p].covering_bound / e.lo;
       if (ratio > worst)
@@ -897,12 +911,29 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
     if (not_below > 0 && cov.verdict == Verdict::certified)
       cov.undecide(std::to_string(not_below) + " cells' certified covering bound is not below their eps(p)");
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, eps_max);
-    per_point_details = {{"cells_not_below_eps", not_below}, {"refuting_vertices", refuting}, {"tightest_cell", worst_cell}};
+    per_point_details = {{"cells_not_below_eps", upper_proven ? json(not_below) : json(nullptr)},
+                         {"refuting_vertices", refuting},
+                         {"tightest_cell", worst_cell}};
+    if (!worst_cell.is_null())
+      cov.bound_proven_whatever_the_verdict("/details/per_point/tightest_cell/certified_upper_bound",
+                                            R.cells[worst_cell["point"].get<std::size_t>()].covering_bound,
+                                            "the covering argument holds");
   }
-  if (R.covering_point >= 0)
+  // Printed as certified only what is proven: the upper bound under the covering argument, the lower bound always.
+  if (upper_proven) {
     cov.margin = {{"covering_radius", {{"certified_upper_bound", num(R.covering)}, {"certified_lower_bound", num(lower)}}},
                   {"attained_near", location_json(R.cells[R.covering_point].covering_location)},
                   {"in_the_cell_of", R.covering_point}};
+    cov.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_upper_bound", R.covering,
+                                          "the covering argument holds");
+  } else {
+    cov.margin = {{"covering_radius",
+                   {{"certified_lower_bound", num(lower)},
+                    {"upper_bound", "not proven: " + (R.covering_certified ? std::string("no restricted Voronoi vertex was found")
+                                                                            : R.reason)}}}};
+  }
+  cov.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_lower_bound", lower,
+                                        "the farthest certified restricted Voronoi vertex");
   cov.details = {{"assumptions",
                   {{"charts", R.reach_slabs == 0 && R.rational_chart_cells == 0
                                   ? "none: no reach and no graph property is assumed; the other sheets of "
@@ -941,12 +972,15 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
     undecided.push_back(u);
   }
   cov.details["undecided_examples"] = undecided;
-  cov.summary = (R.covering_certified ? "P is an eps-sample of M with eps <= " + num(R.covering)
-                                      : "covering radius not certified (" + R.reason + ")") +
+  long undecided_boxes = 0;
+  for (const auto& c : R.cells) undecided_boxes += static_cast<long>(c.undecided.size());
+  cov.details["undecided_boxes"] = undecided_boxes;
+  cov.summary = (upper_proven ? "P is an eps-sample of M with eps <= " + num(R.covering)
+                              : "covering radius not certified (" + (R.covering_certified ? std::string("no restricted Voronoi vertex was found") : R.reason) + ")") +
                 "; a restricted Voronoi vertex is at distance >= " + num(lower) + " from P" +
                 (claim ? "; claim " + exact::rational_to_string(*claim) : "") +
                 (per_point ? "; claim eps(p) per point (" + per_point_file + "), tightest cell " +
-                                 (worst_cell.is_null() ? std::string("none") : worst_cell["point"].dump() + ": bound " +
+                                 (worst_cell.is_null() ? std::string(upper_proven ? "none" : "not known") : worst_cell["point"].dump() + ": bound " +
                                                                                    worst_cell["certified_upper_bound"].dump() +
                                                                                    " vs eps(p) " + worst_cell["eps_at_point"].get<std::string>())
                            : "");
@@ -1380,8 +1414,9 @@ Certificate run_certify(const CertifyOptions& o) {
     Measured meas;
     meas.min_distance = sqrt_lower(sparsity.min_squared);
     meas.min_thickness = thick.min_top.lo;
-    meas.min_margin = protection->cells ? protection->min_margin.lo : -INFINITY;
-    meas.max_radius_squared = radius->cells ? radius->max_r2.hi : INFINITY;
+    // (bounds over all star cells only where every star was determined: check 9's factor is printed as certified)
+    meas.min_margin = protection->cells && protection->all_determined ? protection->min_margin.lo : -INFINITY;
+    meas.max_radius_squared = radius->cells && radius->all_determined ? radius->max_r2.hi : INFINITY;
     meas.eps = claims.star_radius && radius->entry.verdict == Verdict::certified
                    ? std::optional<mpq_class>(*claims.star_radius)
                    : std::nullopt;

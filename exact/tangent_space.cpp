@@ -10,11 +10,14 @@
 
 #include "exact/detail/kernels.hpp"
 #include "exact/detail/tangent_impl.hpp"
+#include "exact/equations.hpp"
 #include "exact/interval.hpp"
 #include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::exact {
+
+static_assert(detail::kMaxCodim == kMaxCodimension);  // (exact/equations.hpp)
 
 using detail::EX;
 using detail::IA;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "exact/equations.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/points.hpp"
@@ -199,19 +200,28 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
   const int N = s.ambient_dimension;
   s.intrinsic_dimension = static_cast<int>(get_int(require(j, "intrinsic_dimension", c), "intrinsic_dimension", c, 1, N - 1));
   const int m = s.intrinsic_dimension;
+  if (N - m > exact::kMaxCodimension)
+    c.fail("intrinsic_dimension", "the codimension N - m = " + std::to_string(N) + " - " + std::to_string(m) + " = " +
+                                      std::to_string(N - m) + " exceeds the supported maximum " +
+                                      std::to_string(exact::kMaxCodimension) +
+                                      " (exact tangent bases); describe M in a smaller ambient space");
   const json& eq = require(j, "equations", c);
   if (!eq.is_array()) c.fail("equations", "expected an array of polynomial strings");
   if (static_cast<int>(eq.size()) != N - m)
     c.fail("equations", "has " + std::to_string(eq.size()) + " equations but a " + std::to_string(m) +
                             "-manifold in R^" + std::to_string(N) + " needs N - m = " + std::to_string(N - m));
+  // Every equation (and the selector) is kept at its canonical scale (exact::at_canonical_scale:
+  // times a positive rational, so the zero set and every sign are the written ones): whatever
+  // reads the spec, the certifier's charts, Krawczyk and distance tests, the residual check and
+  // the producer, sees F and c F (c > 0) as the same polynomial; `equation_text` keeps the text.
   for (std::size_t i = 0; i < eq.size(); ++i) {
     const std::string f = detail::json_element_path("equations", i);
-    s.equations.push_back(get_polynomial(eq[i], f, N, c));
+    s.equations.push_back(exact::at_canonical_scale(get_polynomial(eq[i], f, N, c)));
     s.equation_text.push_back(eq[i].get<std::string>());
     if (s.equations.back().is_constant()) c.fail(f, "is constant; every equation must involve the coordinates");
   }
   if (j.contains("selector") && !j.at("selector").is_null()) {
-    s.selector = get_polynomial(j.at("selector"), "selector", N, c);
+    s.selector = exact::at_canonical_scale(get_polynomial(j.at("selector"), "selector", N, c));
     s.selector_text = j.at("selector").get<std::string>();
   }
   if (j.contains("reach") && !j.at("reach").is_null()) {

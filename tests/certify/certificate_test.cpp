@@ -52,6 +52,54 @@ TEST(ConsistencyGuard, OnlyCertifiedChecksAreHeldToTheirRequirements) {
   }
 }
 
+// The second half of the guard: an UNDECIDED check prints a certified bound only where it registered
+// that very value as proven whatever its verdict (the tesseract's covering bound 0.99253 < 1 was
+// printed as certified under UNDECIDED).
+TEST(ConsistencyGuard, UndecidedCheckPrintsOnlyTheBoundsItRegistered) {
+  auto entry = [](Verdict v) {
+    CheckEntry e(CheckId::covering);
+    e.verdict = v;
+    e.margin = {{"covering_radius", {{"certified_upper_bound", num(0.99253)}, {"certified_lower_bound", num(0.5)}}}};
+    e.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_lower_bound", 0.5, "a certified vertex");
+    return e;
+  };
+  auto failures = [](const CheckEntry& e) {
+    Certificate C;
+    C.checks.push_back(e);
+    return C.self_check_failures();
+  };
+  // UNDECIDED: the unregistered upper bound fails, the registered lower bound does not.
+  auto f = failures(entry(Verdict::undecided));
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NE(f[0].find("/margin/covering_radius/certified_upper_bound = 0.99253"), std::string::npos) << f[0];
+  // REPORT with details.decision UNDECIDED (a check that is not claimed) likewise; REPORT without one,
+  // CERTIFIED and REFUTED are not held to it.
+  CheckEntry r = entry(Verdict::report);
+  r.details["decision"] = "UNDECIDED";
+  EXPECT_EQ(failures(r).size(), 1u);
+  r.details["decision"] = "CERTIFIED";
+  EXPECT_TRUE(failures(r).empty());
+  for (Verdict v : {Verdict::certified, Verdict::refuted, Verdict::report}) EXPECT_TRUE(failures(entry(v)).empty());
+  // Registered, but printed with another value (perturbed by one ulp): fails.
+  CheckEntry p = entry(Verdict::undecided);
+  p.margin["covering_radius"].erase("certified_upper_bound");
+  EXPECT_TRUE(failures(p).empty());
+  p.margin["covering_radius"]["certified_lower_bound"] = num(std::nextafter(0.5, 1.0));
+  EXPECT_EQ(failures(p).size(), 1u);
+  // Anywhere in the entry: details and witnesses too, at their own pointer.
+  CheckEntry d = entry(Verdict::undecided);
+  d.margin["covering_radius"].erase("certified_upper_bound");
+  d.details["per_point"] = {{"tightest_cell", {{"certified_upper_bound", "0.7"}}}};
+  d.witnesses.push_back({{"distance", {{"certified_lower_bound", "0.5"}}}});
+  f = failures(d);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_NE(f[0].find("/details/per_point/tightest_cell/certified_upper_bound"), std::string::npos) << f[0];
+  EXPECT_NE(f[1].find("/witnesses/0/distance/certified_lower_bound"), std::string::npos) << f[1];
+  Certificate C;
+  C.checks.push_back(d);
+  EXPECT_THROW(enforce_self_consistency(C), SelfCheckFailure);
+}
+
 // Claims as close to the true values as a short rational gets: the octahedron's minimum power
 // margin is exactly 4 and its minimum distance exactly sqrt(2). Claims just below them are
 // CERTIFIED, and the printed bounds must not fall below the claims (the guard would turn the run

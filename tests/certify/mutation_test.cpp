@@ -428,6 +428,117 @@ TEST(Mutation, ScaledInputMutantsAreNeverCertified) {
   EXPECT_GE(mutants(t), minimum(kMinScaled));
 }
 
+// Mutants of the certificate itself (issue 39): a certified bound under an UNDECIDED decision that
+// the check did not prove whatever its verdict. Real certificates (an audit that is UNDECIDED, the
+// tesseract's 16 vertices on S^3, and one that is CERTIFIED, 90 points on S^2) are mutated by
+//  * "undecide": a check that prints certified bounds is made UNDECIDED (or REPORT with
+//    details.decision UNDECIDED) with its bounds left in place;
+//  * "perturb": a certified bound printed by an UNDECIDED check is moved by 1 to 2^20 ulps;
+//  * "insert": a certified_upper_bound or certified_lower_bound key is added to an UNDECIDED entry;
+// and the consistency guard must catch every one (Certificate::self_check_failures non-empty). The
+// unmutated certificates must pass it.
+using Pointer = std::vector<std::string>;  // the path of a certified key inside the entry's JSON
+
+void certified_paths(const nlohmann::json& j, Pointer at, std::vector<Pointer>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      Pointer next = at;
+      next.push_back(k);
+      if (k == "certified_upper_bound" || k == "certified_lower_bound") out.push_back(next);
+      certified_paths(v, next, out);
+    }
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) certified_paths(j[i], [&] { Pointer n = at; n.push_back(std::to_string(i)); return n; }(), out);
+  }
+}
+
+nlohmann::json& at_path(CheckEntry& e, const Pointer& p) {
+  nlohmann::json* j = p[0] == "margin" ? &e.margin : p[0] == "details" ? &e.details : &e.witnesses;
+  for (std::size_t i = 1; i < p.size(); ++i) j = j->is_array() ? &(*j)[std::stoul(p[i])] : &(*j)[p[i]];
+  return *j;
+}
+
+std::vector<Pointer> certified_in(const CheckEntry& e) {
+  std::vector<Pointer> out;
+  certified_paths(e.margin, {"margin"}, out);
+  certified_paths(e.details, {"details"}, out);
+  certified_paths(e.witnesses, {"witnesses"}, out);
+  return out;
+}
+
+bool registered(const CheckEntry& e, const Pointer& p) {
+  std::string s;
+  for (const auto& k : p) s += "/" + k;
+  for (const auto& b : e.proven_whatever_the_verdict)
+    if (b.pointer == s) return true;
+  return false;
+}
+
+TEST(Mutation, CertifiedBoundsUnderUndecidedAreCaughtByTheGuard) {
+  std::vector<Certificate> bases;
+  {
+    CertifyOptions o;  // UNDECIDED: check 11 (exact ties at the centres of the tesseract's cells)
+    o.manifold = "builtin:sphere-3";
+    o.points = fixture("soundness/bounds/tesseract-s3.txt");
+    bases.push_back(run_certify(o));
+    TempDir dir("mut-guard");
+    o.manifold = "builtin:sphere-2";  // CERTIFIED
+    o.points = dir.file("points.txt");
+    io::write_points(o.points, fibonacci_sphere(90));
+    bases.push_back(run_certify(o));
+  }
+  ASSERT_EQ(check(bases[0], CheckId::covering).verdict, Verdict::undecided);
+  ASSERT_EQ(bases[1].overall(), Verdict::certified);
+  Rng rng(909);
+  std::map<std::string, int> caught, total;
+  auto record = [&](const std::string& kind, const Certificate& C, const std::string& what) {
+    ++total[kind];
+    const bool found = !C.self_check_failures().empty();
+    caught[kind] += found;
+    EXPECT_TRUE(found) << kind << " mutant not caught: " << what;
+  };
+  for (const Certificate& base : bases) {
+    EXPECT_TRUE(base.self_check_failures().empty());
+    for (int round = 0; round < scaled(60); ++round)
+      for (std::size_t i = 0; i < base.checks.size(); ++i) {
+        const CheckEntry& e = base.checks[i];
+        const auto keys = certified_in(e);
+        const bool undecided = e.decision() == Verdict::undecided;
+        if (!undecided && !keys.empty() && !std::all_of(keys.begin(), keys.end(), [&](const Pointer& p) { return registered(e, p); })) {
+          Certificate C = base;
+          if (rng.below(2)) C.checks[i].verdict = Verdict::undecided;
+          else C.checks[i].verdict = Verdict::report, C.checks[i].details["decision"] = "UNDECIDED";
+          record("undecide", C, e.name());
+        }
+        if (undecided && !keys.empty()) {
+          Certificate C = base;
+          nlohmann::json& v = at_path(C.checks[i], keys[rng.below(static_cast<int>(keys.size()))]);
+          double x = std::stod(v.get<std::string>());
+          const int ulps = 1 + rng.below(1 << 20);
+          const bool up = rng.below(2);
+          for (int u = 0; u < ulps && std::isfinite(x); u = u < 64 ? u + 1 : u * 2) x = std::nextafter(x, up ? INFINITY : -INFINITY);
+          v = num(x);
+          record("perturb", C, e.name());
+        }
+        if (undecided) {
+          Certificate C = base;
+          nlohmann::json& m = C.checks[i].margin;
+          if (!m.is_object()) m = nlohmann::json::object();
+          const std::string key = rng.below(2) ? "certified_upper_bound" : "certified_lower_bound";
+          const std::string value = num(std::ldexp(1.0 + rng.below(1000) / 1000.0, rng.below(8) - 4));
+          std::string beside = "inserted";  // or beside the entry's own keys, in an object of its margin
+          for (const auto& [k, v] : m.items())
+            if (v.is_object() && !v.contains(key) && rng.below(2)) beside = k;
+          m[beside][key] = value;
+          record("insert", C, e.name() + std::string(" at /margin/") + beside);
+        }
+      }
+  }
+  for (const auto& [kind, n] : total) std::printf("  guard mutants %-9s %4d   caught %4d\n", kind.c_str(), n, caught[kind]);
+  EXPECT_GE(total["undecide"], 1);
+  EXPECT_GE(total["perturb"], 1);
+  EXPECT_GE(total["insert"], 1);
+}
 
 }  // namespace
 }  // namespace delcert::certify::test

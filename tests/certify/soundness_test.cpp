@@ -126,5 +126,52 @@ TEST(Soundness, SubnormalCoordinatesGetAVerdict) {
   EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
 }
 
+// Case "covering bound" (third round): the 16 vertices of a tesseract on S^3, whose covering
+// radius is exactly 1 (the centre of a cell of the tesseract, (1, 0, 0, 0), is at distance 1 from
+// every vertex, and no point of S^3 is farther). Check 11 printed a certified_upper_bound of
+// 0.99253, computed over the decided boxes only, under UNDECIDED. Every certified bound printed
+// must be a bound: an upper bound >= 1, a lower bound <= 1; under UNDECIDED no upper bound at all.
+TEST(Soundness, CoveringBoundIsNeverBelowTheTruth) {
+  TempDir dir("sound-cover");
+  const std::string cert = dir.file("cert.json");
+  RunResult r = certify_cmd("--manifold builtin:sphere-3 --points " + soundness("bounds/tesseract-s3.txt") +
+                                " --no-times --out " + q(cert),
+                            dir);
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 3) << r.out << r.err;
+  EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
+  auto j = nlohmann::json::parse(read_text(cert));
+  bool seen = false;
+  for (const auto& c : j["checks"]) {
+    if (c["name"] != "covering") continue;
+    seen = true;
+    const auto& cr = c["margin"]["covering_radius"];
+    if (c["verdict"] == "UNDECIDED") {
+      EXPECT_FALSE(cr.contains("certified_upper_bound")) << c.dump(1);
+    }
+    if (cr.contains("certified_upper_bound")) {
+      EXPECT_GE(std::stod(cr["certified_upper_bound"].get<std::string>()), 1.0);
+    }
+    ASSERT_TRUE(cr.contains("certified_lower_bound")) << c.dump(1);
+    EXPECT_LE(std::stod(cr["certified_lower_bound"].get<std::string>()), 1.0);
+    EXPECT_NE(c["summary"].get<std::string>().find("not certified"), std::string::npos) << c["summary"];
+  }
+  EXPECT_TRUE(seen);
+}
+
+// Case "codimension 9": a sphere in R^11 (nine equations). The exact tangent bases stop at eight;
+// the spec is refused at reading, exit 2, naming the limit, the file and the line, no certificate.
+TEST(Soundness, CodimensionNineIsRefusedNamingTheLimit) {
+  TempDir dir("sound-codim");
+  const std::string cert = dir.file("cert.json");
+  RunResult r = certify_cmd("--manifold " + soundness("scale/sphere-codim9.json") + " --points " +
+                                soundness("scale/fib30-r11.txt") + " --out " + q(cert),
+                            dir, 60);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_TRUE(has(r.err, "exceeds the supported maximum 8")) << r.err;
+  EXPECT_TRUE(has(r.err, "sphere-codim9.json:4:")) << r.err;
+  EXPECT_FALSE(has(r.out + r.err, "internal error")) << r.out << r.err;
+  EXPECT_FALSE(std::filesystem::exists(cert));
+}
+
 }  // namespace
 }  // namespace delcert::certify::test

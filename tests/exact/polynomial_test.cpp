@@ -1,5 +1,7 @@
 #include "exact/polynomial.hpp"
 
+#include "exact/equations.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -230,6 +232,27 @@ TEST(Polynomial, IntegerFormIsExactAndDivisionFree) {
   mpq_class num = p.evaluate_with<mpq_class>(std::span<const mpq_class>(x),
                                              [&](std::size_t i) { return mpq_class(f.numerators[i]); });
   EXPECT_EQ(num / f.denominator, p.evaluate(std::span<const mpq_class>(x)));
+}
+
+// The canonical scale (the spec reader's): c p and p give the same polynomial for every rational
+// c > 0, however large or small; signs are kept; a dyadic polynomial with largest |coefficient|
+// in [1, 2) and integer-gcd 1 after clearing is left as it is.
+TEST(Polynomial, CanonicalScaleForgetsOnlyAPositiveFactor) {
+  const auto p = Polynomial::parse("x1^2 + x2^2 + x3^2 - 1", 3);
+  EXPECT_EQ(at_canonical_scale(p), p);
+  const mpz_class two1000 = mpz_class(1) << 1000;
+  for (const mpq_class& c : {mpq_class(two1000), mpq_class(mpz_class(1), two1000), exact::parse_rational("1e400"),
+                             exact::parse_rational("1e-400"), mpq_class(3, 7), mpq_class(6)}) {
+    EXPECT_EQ(at_canonical_scale(p.scaled(c)), p) << c.get_str().substr(0, 40);
+    EXPECT_EQ(at_canonical_scale(p.scaled(-c)), -p);  // the sign is kept
+  }
+  // Largest |coefficient| in [1, 2), the ratios kept exactly.
+  const auto torus = Polynomial::parse("(x1^2 + x2^2 + x3^2 + 3)^2 - 16*(x1^2 + x2^2)", 3);
+  const auto t = at_canonical_scale(torus);
+  EXPECT_EQ(t, torus.scaled(mpq_class(1, 8)));  // largest |coefficient| 10
+  const auto q = at_canonical_scale(Polynomial::parse("0.1*x1^2 + x2 - 3/7", 2));  // 7 x1^2 + 70 x2 - 30, over 64
+  EXPECT_EQ(q, Polynomial::parse("7/64*x1^2 + 70/64*x2 - 30/64", 2));
+  EXPECT_TRUE(at_canonical_scale(Polynomial(2)).is_zero());
 }
 
 TEST(Polynomial, DoubleEvaluationAgreesWithExact) {

@@ -253,6 +253,24 @@ namespace {
 
 // delcert-certify --residual-tolerance: a positive rational, read exactly; anything else is refused
 // naming the option (exit status 2 in the binary).
+// Codimension above what the exact tangent bases support: refused at reading (exit 2), naming the
+// limit and the line, not an internal error halfway through a run.
+TEST(Spec, CodimensionAboveTheSupportedMaximumIsRefused) {
+  test::expect_input_error([](const std::string& p) { read_spec(p); }, fixture("soundness/scale/sphere-codim9.json"), 4,
+                           "exceeds the supported maximum 8");
+}
+
+// Equations are read at their canonical scale: the sphere times 10^-400 is the sphere.
+TEST(Spec, EquationsAreReadAtTheirCanonicalScale) {
+  const ManifoldSpec plain = read_spec(fixture("soundness/scale/sphere-plain.json"));
+  for (const char* f : {"sphere-tiny.json", "sphere-10p400.json", "sphere-2p1000.json", "sphere-2m1000.json"}) {
+    const ManifoldSpec s = read_spec(fixture(std::string("soundness/scale/") + f));
+    ASSERT_EQ(s.equations.size(), 1u);
+    EXPECT_EQ(s.equations[0], plain.equations[0]) << f;
+    EXPECT_NE(s.equation_text[0], plain.equation_text[0]) << f;  // the text as written is kept
+  }
+}
+
 TEST(ResidualTolerance, PositiveRationalsOnly) {
   EXPECT_EQ(parse_residual_tolerance("1e-6"), mpq_class(1, 1000000));
   EXPECT_EQ(parse_residual_tolerance("1/3"), mpq_class(1, 3));
