@@ -671,15 +671,15 @@ CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattic
   return topo;
 }
 
-// A check that is not a claim of this input: its decision is reported (details.decision), not held against the input.
+// A check that is not a claim of this input (is_claimed): its decision is reported (details.decision), not held
+// against the input. Its requirements stay: the consistency guard still holds a reported CERTIFIED to its bounds.
 void report_unclaimed(CheckEntry& e) {
   e.details["decision"] = to_string(e.verdict);
   e.verdict = Verdict::report;
-  e.summary += " [not claimed]";
 }
 
 // Check 7: are the star simplices secure (paper Definition 3.1), with the parameters that check 9 derives from the
-// measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
+// measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (is_claimed).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
                                   bool stars_are_the_complex, io::ProgressLine* progress, Distribution& D) {
@@ -691,7 +691,6 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   if (!tp.usable) {
     secure.undecide("not evaluated: " + tp.why);
     secure.summary = "not evaluated: " + tp.why;
-    if (!claimed) report_unclaimed(secure);
     return secure;
   }
   const std::size_t n = reports.size();
@@ -742,7 +741,6 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
                    (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 50 000 points within 5 eps)" : "") +
                    (no_halo ? "; " + std::to_string(no_halo) + " not evaluated (an MPI rank's halo too small)" : "");
   if (no_halo) secure.details["not_evaluated_halo_too_small"] = no_halo;
-  if (!claimed) report_unclaimed(secure);
   return secure;
 }
 
@@ -799,15 +797,14 @@ CheckEntry not_computed(CheckId id, const std::string& why = "") {
 }
 
 // The checks that need T_p M at every point (Del_TM and what is measured on it), when some point is off M: accepted
-// only for a complex claimed to be restricted Delaunay (check 1), they are not computed. REPORT (Del_TM is not what
-// the input claims), UNDECIDED where the claims file makes a claim the check would have decided.
-CheckEntry tangent_space_undefined(CheckId id, int point, bool claimed) {
+// only for a complex claimed to be restricted Delaunay (check 1), they are not computed: UNDECIDED, which counts
+// only where the claims file makes a claim the check would have decided (is_claimed; else reported).
+CheckEntry tangent_space_undefined(CheckId id, int point) {
   CheckEntry e(id);
   const std::string why = "point " + std::to_string(point) +
                           " is off M (residual above the spec's residual_tolerance), where T_p M is not defined, "
                           "so Del_TM(P) is not computed";
-  if (claimed) e.undecide(why);
-  else e.verdict = Verdict::report;
+  e.undecide(why);
   e.summary = "not computed: " + why;
   return e;
 }
@@ -1092,7 +1089,7 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
 }
 
 // Check 13: Del_TM(P) = Del_RM(P) on m-simplices, decided either way with witnesses.
-CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R, bool claimed) {
+CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R) {
   CheckEntry eq(CheckId::tangential_equals_restricted);
   std::set<Simplex> tm;
   long unknown_stars = 0;
@@ -1131,14 +1128,12 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
                 {"only_in_restricted", only_rm}, {"only_in_tangential", only_tm}, {"stars_undetermined", unknown_stars}};
   eq.summary = equality(eq.verdict, "Del_TM(P)", "Del_RM(P)") + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
                std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) + " only restricted)";
-  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
 // Check 14: Del_M(P) computed (certify/intrinsic.hpp) and, with --kind intrinsic, compared with
-// the given complex. Not a claim with --kind restricted (REPORT, the decision in details).
-CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::Complex>& given, bool intrinsic_kind,
-                           bool claimed, int m) {
+// the given complex.
+CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::Complex>& given, bool intrinsic_kind, int m) {
   CheckEntry im(CheckId::intrinsic_delaunay);
   im.details = {{"metric", D.metric.empty() ? json(nullptr) : json(D.metric)}};
   if (!D.computed) {
@@ -1197,12 +1192,11 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
                                                 std::to_string(extra) + " not in Del_M"
                                           : "");
   }
-  if (!claimed) report_unclaimed(im);
   return im;
 }
 
 // Check 15: Del_RM(P) = Del_M(P) on m-simplices, decided either way with witnesses.
-CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const IntrinsicDelaunay& D, bool claimed) {
+CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const IntrinsicDelaunay& D) {
   CheckEntry eq(CheckId::restricted_equals_intrinsic);
   long only_rm = 0, only_m = 0;
   std::set<Simplex> rm, im, rejected;
@@ -1242,11 +1236,30 @@ CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const 
   eq.summary = equality(eq.verdict, "Del_RM(P)", "Del_M(P)") + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
                std::to_string(only_rm) + " only restricted, " + std::to_string(only_m) + " only intrinsic)";
   if (!D.computed) eq.summary = "not decided: Del_M(P) not computed: " + D.reason;
-  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
 }  // namespace
+
+bool is_claimed(CheckId id, Mode mode, const io::Claims& claims) {
+  switch (id) {
+    case CheckId::input_sanity: return true;
+    case CheckId::theorem: return false;  // the paper's hypotheses, measured
+    case CheckId::secure_simplices: return claims.secure;
+    default: break;
+  }
+  if (mode == Mode::audit || mode == Mode::tangential) return true;  // the refiner's promise: Del_TM = Del_RM = Del_M
+  switch (id) {  // a complex claimed restricted or intrinsic: that, and the claims file
+    case CheckId::sparsity: return claims.sparsity.has_value();
+    case CheckId::thickness: return claims.gamma0.has_value();
+    case CheckId::power_protection: return claims.power_protection.has_value();
+    case CheckId::star_radius: return claims.star_radius || !claims.star_radius_per_point_file.empty();
+    case CheckId::covering: return claims.covering || !claims.covering_per_point_file.empty();
+    case CheckId::restricted_delaunay: return mode == Mode::restricted;  // its completeness is check 11's argument
+    case CheckId::intrinsic_delaunay: return mode == Mode::intrinsic;
+    default: return false;  // 3, 4, 13, 15: other complexes of P; 8: the spec's expected topology
+  }
+}
 
 Certificate run_certify(const CertifyOptions& o) {
   using clock = std::chrono::steady_clock;
@@ -1348,12 +1361,12 @@ Certificate run_certify(const CertifyOptions& o) {
     watch.record(C, "assemble_checks_3_4_6_10");
   } else {
     const int first = sanity.off_manifold[0];
-    stars_entry = tangent_space_undefined(CheckId::stars, first, false);
-    consistency = tangent_space_undefined(CheckId::consistency, first, false);
-    protection_entry = tangent_space_undefined(CheckId::power_protection, first, claims.power_protection.has_value());
-    radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value() || radius_per_point);
-    secure = tangent_space_undefined(CheckId::secure_simplices, first, claims.secure);
-    theorem = tangent_space_undefined(CheckId::theorem, first, false);
+    stars_entry = tangent_space_undefined(CheckId::stars, first);
+    consistency = tangent_space_undefined(CheckId::consistency, first);
+    protection_entry = tangent_space_undefined(CheckId::power_protection, first);
+    radius_entry = tangent_space_undefined(CheckId::star_radius, first);
+    secure = tangent_space_undefined(CheckId::secure_simplices, first);
+    theorem = tangent_space_undefined(CheckId::theorem, first);
   }
 
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by check 3 (wrong
@@ -1403,8 +1416,10 @@ Certificate run_certify(const CertifyOptions& o) {
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
     covering = check_covering(*R, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
     restricted = check_restricted(*R, in.given, restricted_kind, m);
-    equal = on_M ? check_tangential_equals_restricted(*stars, *R, !restricted_kind && !intrinsic_kind)
-                 : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);
+    // Del_RM(P) known completely rests on check 11's covering argument, whether or not a covering radius is claimed.
+    restricted->details["assumptions"] = covering->details["assumptions"];
+    equal = on_M ? check_tangential_equals_restricted(*stars, *R)
+                 : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0]);
   }
   watch.record(C, "restricted_delaunay");
 
@@ -1450,8 +1465,8 @@ Certificate run_certify(const CertifyOptions& o) {
         }
     phase("checks 14-15 intrinsic Delaunay");
     const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
-    intrinsic = check_intrinsic(D, in.given, intrinsic_kind, !restricted_kind, m);
-    equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D, !restricted_kind && !intrinsic_kind);
+    intrinsic = check_intrinsic(D, in.given, intrinsic_kind, m);
+    equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D);
   }
   watch.record(C, "intrinsic_delaunay");
   if (o.progress) o.progress->clear();
@@ -1478,6 +1493,20 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(std::move(*equal));
   C.checks.push_back(std::move(*intrinsic));
   C.checks.push_back(std::move(*equal_mi));
+  // The verdict answers what was claimed, and only that: every other check is reported (is_claimed).
+  const Mode mode = !in.given ? Mode::audit : restricted_kind ? Mode::restricted : intrinsic_kind ? Mode::intrinsic : Mode::tangential;
+  for (CheckEntry& e : C.checks) {
+    const bool claim = is_claimed(e.id, mode, claims);
+    // The complex's own claim (12 or 14) is decided, never merely reported: else check 1 alone would certify it.
+    const bool about_the_complex = claim && (mode == Mode::restricted || mode == Mode::intrinsic) &&
+                                   (e.id == CheckId::restricted_delaunay || e.id == CheckId::intrinsic_delaunay);
+    if (about_the_complex && e.verdict == Verdict::report) {
+      e.verdict = Verdict::undecided;
+      e.details["reason"] = "the complex's claim was not decided: " + e.summary;
+    }
+    if (e.verdict != Verdict::report && !claim) report_unclaimed(e);
+    e.claimed = e.verdict != Verdict::report;
+  }
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error
