@@ -4,7 +4,6 @@
 
 #include <set>
 
-#include "certify/certify.hpp"
 #include "certify/restricted.hpp"
 #include "certify/restricted_recheck.hpp"
 #include "certify/sanity.hpp"
@@ -15,36 +14,6 @@
 
 namespace delcert::certify::test {
 namespace {
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
-
-// The outside review's case (fixtures/soundness/off-manifold/): a gmsh mesh of the unit sphere
-// scaled by 1.3 (every vertex 0.3 from M) or 1.2, claimed restricted. Scaling a radial sample of a
-// sphere keeps its Voronoi cells (cones from the centre), so both meshes are Del_RM(P): 1.2 must
-// certify, 1.3 may be CERTIFIED, UNDECIDED or refused, never REFUTED (it was, "820 not in Del_RM",
-// on no witness).
-TEST(OffManifold, ScaledSphereMeshIsNeverRefuted) {
-  for (const char* scale : {"1.2", "1.3"}) {
-    TempDir dir("off-manifold");
-    const std::string mesh = q(fixture(std::string("soundness/off-manifold/sphere-mesh-scaled-") + scale + ".off"));
-    const std::string cert = dir.file("cert.json");
-    RunResult r = run("timeout 120 " + binary() + " --manifold builtin:sphere-2 --points " + mesh + " --complex " + mesh +
-                          " --kind restricted --residual-tolerance 2 --no-times --out " + q(cert),
-                      dir);
-    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2 || r.exit_code == 3) << scale << ": " << r.out << r.err;
-    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << scale << ": " << r.err;
-    if (std::string(scale) == "1.2") {
-      EXPECT_EQ(r.exit_code, 0) << r.out;
-    }
-    if (r.exit_code == 0) {  // then all of Del_RM(P) was found, and it is the mesh
-      const auto j = nlohmann::json::parse(read_text(cert));
-      for (const auto& c : j["checks"])
-        if (c["id"] == 12) {
-          EXPECT_EQ(c["details"]["m_simplices"], 820) << scale;
-        }
-    }
-  }
-}
 
 io::PointSet mesh_points(const char* scale) {
   return io::read_points(fixture(std::string("soundness/off-manifold/sphere-mesh-scaled-") + scale + ".off"));
