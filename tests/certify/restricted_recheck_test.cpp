@@ -35,6 +35,14 @@ TEST(OffManifold, TheCoveringArgumentNeedsAnAnchor) {
   EXPECT_TRUE(blind.simplices.empty());
   EXPECT_FALSE(blind.covering_certified);
   EXPECT_NE(blind.reason.find("no anchor"), std::string::npos) << blind.reason;
+  // Distances too small to reach M (work only: they cannot make it wrong, only slow or undecided):
+  // still no anchor, and the reason names the farthest point and its distance to M.
+  const std::vector<double> small(P.size(), 0.01);
+  o.distance_to_M = &small;
+  const RestrictedDelaunay short_balls = compute_restricted_delaunay(F, P, grid, o);
+  EXPECT_FALSE(short_balls.covering_certified);
+  EXPECT_NE(short_balls.reason.find("no anchor"), std::string::npos) << short_balls.reason;
+  EXPECT_NE(short_balls.reason.find("point 0 is up to 0.01 from M"), std::string::npos) << short_balls.reason;
 
   const std::vector<double> distance(P.size(), 0.30000000000000009);  // check 1's bound (about)
   o.distance_to_M = &distance;
