@@ -1032,9 +1032,11 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
     premise_checked = true;
     rd.refute(why);
   };
-  constexpr std::size_t kShown = 20;  // witnesses printed (CheckEntry::add_witness's cap), each re-checked
-  auto proven = [&](const RestrictedSimplex& s, json w, const char* field) {
-    if (rd.witnesses.size() < kShown)
+  // Witnesses printed (CheckEntry::add_witness's cap), each re-checked; the first of each refutation
+  // (`first`) is re-checked even when the cap hides it: the verdict rests on it.
+  constexpr std::size_t kShown = 20;
+  auto proven = [&](const RestrictedSimplex& s, json w, const char* field, bool first) {
+    if (first || rd.witnesses.size() < kShown)
       w[field] = box_json(require_nearest_set(recheck, s.simplex, s.vertex.x, "check 12 (restricted_delaunay)"));
     rd.add_witness(std::move(w), kShown);
   };
@@ -1053,7 +1055,8 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
                                  "which no complex of m-simplices can be)"
                                : "Del_RM(P) is not pure: a simplex of it is in no m-simplex");
   for (const auto& f : R.lower_faces)
-    impure_known ? proven(f, face_witness(f, true), "point_enclosure") : rd.add_witness(face_witness(f, false), kShown);
+    impure_known ? proven(f, face_witness(f, true), "point_enclosure", &f == &R.lower_faces.front())
+                 : rd.add_witness(face_witness(f, false), kShown);
   for (const auto& f : R.cross_check_failures)
     rd.add_witness({{"kind", "cross_check_failure"}, {"simplex", f.simplex}, {"found_at", f.found_at},
                     {"missed_at", f.missed_at}}, kShown);
@@ -1063,7 +1066,7 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (tops.count(s.simplex)) continue;
       ++missing;  // certified without any assumption: refuted whatever else is undecided
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
-      proven(s, vertex_witness(s), "vertex_enclosure");
+      proven(s, vertex_witness(s), "vertex_enclosure", missing == 1);
     }
     if (!tops_equal)
       for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
@@ -1074,7 +1077,7 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
           continue;
         ++missing;
         rd.refute("a simplex of Del_RM(P) is missing from the complex");
-        if (!impure_known) proven(f, face_witness(f, false), "point_enclosure");  // (else shown above)
+        if (!impure_known) proven(f, face_witness(f, false), "point_enclosure", missing == 1);  // (else shown above)
       }
     // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
     // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
