@@ -15,6 +15,7 @@
 #include "certify/distributed.hpp"
 #include "certify/intrinsic.hpp"
 #include "certify/restricted.hpp"
+#include "certify/restricted_recheck.hpp"
 #include "certify/sanity.hpp"
 #include "certify/detail/sha256.hpp"
 #include "certify/star.hpp"
@@ -998,8 +999,19 @@ std::string equality(Verdict v, const std::string& a, const std::string& b) {
 
 // Check 12: Del_RM(P) computed (every m-simplex with a certified restricted Voronoi vertex; all
 // of them when the covering argument holds; pure when no face is in doubt) and, with --kind
-// restricted, compared with the given complex.
-CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io::Complex>& given, bool claimed, int m) {
+// restricted, compared with the given complex. Every REFUTED rests on witnesses re-checked by
+// certify/restricted_recheck.hpp before they are printed: a simplex of Del_RM(P) by its nearest-set
+// proof, a rejection by completeness by the covering argument's premises (a failure there is an
+// internal error, never a verdict).
+//
+// When Del_RM(P) is known completely and not pure (a face point: a simplex of it of dimension < m in
+// no m-simplex), the verdict is REFUTED: check 12 claims that Del_RM(P) is a pure m-complex (a
+// triangulation candidate) equal to the complex, and the face point proves the first part false.
+// If the complex's m-simplices are exactly Del_RM(P)'s, the complex is not what is wrong: the
+// summary and reason say so ("Del_RM(P) is not pure: it triangulates nothing"), and the lower faces
+// are not counted as missing from it (no pure m-complex could hold them as maximal simplices).
+CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io::Complex>& given, bool claimed, int m,
+                            const RecheckInput& recheck) {
   CheckEntry rd(CheckId::restricted_delaunay);
   if (!R.covering_certified) rd.undecide("Del_RM(P) not known completely: " + R.reason);
   long unresolved = 0;
@@ -1010,34 +1022,60 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (impure.size() < 10) impure.push_back({{"face", f.candidates}, {"at_point", c.point},
                                                {"location", location_json(f.location)}, {"why", f.reason}});
     }
+  // A refutation by completeness: its premise is re-checked once, before the first one is printed.
+  bool premise_checked = false;
+  auto by_completeness = [&](const std::string& why) {
+    if (!premise_checked) require_completeness(recheck, R, "check 12 (restricted_delaunay): " + why);
+    premise_checked = true;
+    rd.refute(why);
+  };
+  // Witnesses printed (CheckEntry::add_witness's cap), each re-checked; the first of each refutation
+  // (`first`) is re-checked even when the cap hides it: the verdict rests on it.
+  constexpr std::size_t kShown = 20;
+  auto proven = [&](const RestrictedSimplex& s, json w, const char* field, bool first) {
+    if (first || rd.witnesses.size() < kShown)
+      w[field] = box_json(require_nearest_set(recheck, s.simplex, s.vertex.x, "check 12 (restricted_delaunay)"));
+    rd.add_witness(std::move(w), kShown);
+  };
+  // The m-simplices of the complex, and whether they are exactly Del_RM(P)'s (when it is complete).
+  std::set<Simplex> tops, found;
+  if (claimed && given) tops = top_simplices(*given, m);
+  for (const auto& s : R.simplices) found.insert(s.simplex);
+  const bool tops_equal = claimed && given && R.covering_certified && tops == found;
+  const bool impure_known = !R.lower_faces.empty() && R.covering_certified;
   if (unresolved || (!R.lower_faces.empty() && !R.covering_certified))
     rd.undecide("Del_RM(P) may not be pure: a restricted Voronoi face of dimension > 0 may hold no vertex (see "
                 "details.possibly_impure and the face_point witnesses)");
-  if (!R.lower_faces.empty() && R.covering_certified) rd.refute("Del_RM(P) is not pure: a simplex of it is in no m-simplex");
-  for (const auto& f : R.lower_faces) rd.add_witness(face_witness(f, R.covering_certified));
+  if (impure_known)
+    by_completeness(tops_equal ? "Del_RM(P) is not pure: it triangulates nothing (the complex's m-simplices are exactly "
+                                 "Del_RM(P)'s; Del_RM(P) also holds a simplex of lower dimension in none of them, "
+                                 "which no complex of m-simplices can be)"
+                               : "Del_RM(P) is not pure: a simplex of it is in no m-simplex");
+  for (const auto& f : R.lower_faces)
+    impure_known ? proven(f, face_witness(f, true), "point_enclosure", &f == &R.lower_faces.front())
+                 : rd.add_witness(face_witness(f, false), kShown);
   for (const auto& f : R.cross_check_failures)
     rd.add_witness({{"kind", "cross_check_failure"}, {"simplex", f.simplex}, {"found_at", f.found_at},
-                    {"missed_at", f.missed_at}});
+                    {"missed_at", f.missed_at}}, kShown);
   long missing = 0, extra = 0;
   if (claimed && given) {
-    const std::set<Simplex> tops = top_simplices(*given, m);
-    std::set<Simplex> found;
     for (const auto& s : R.simplices) {
-      found.insert(s.simplex);
       if (tops.count(s.simplex)) continue;
       ++missing;  // certified without any assumption: refuted whatever else is undecided
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
-      rd.add_witness(vertex_witness(s));
+      proven(s, vertex_witness(s), "vertex_enclosure", missing == 1);
     }
-    for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
-      if (std::any_of(given->simplices.begin(), given->simplices.end(), [&](Simplex t) {
-            std::sort(t.begin(), t.end());
-            return std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
-          }))
-        continue;
-      ++missing;
-      rd.refute("a simplex of Del_RM(P) is missing from the complex");
-    }
+    if (!tops_equal)
+      for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
+        if (std::any_of(given->simplices.begin(), given->simplices.end(), [&](Simplex t) {
+              std::sort(t.begin(), t.end());
+              return std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
+            }))
+          continue;
+        ++missing;
+        rd.refute("a simplex of Del_RM(P) is missing from the complex");
+        if (!impure_known) proven(f, face_witness(f, false), "point_enclosure", missing == 1);  // (else shown above)
+      }
     // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
     // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
     for (Simplex s : given->simplices) {
@@ -1054,37 +1092,44 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (face && static_cast<int>(s.size()) < m + 1) continue;
       ++extra;
       if (!R.covering_certified || unresolved) continue;  // not proven absent
-      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      by_completeness("a simplex of the complex is not in Del_RM(P)");
       rd.add_witness({{"kind", static_cast<int>(s.size()) > m + 1 ? "wrong_dimension" : "not_a_face_of_an_m_simplex"},
                       {"simplex", s},
-                      {"detail", "Del_RM(P) is known completely, has no simplex of dimension above m, and is pure"}});
+                      {"detail", "Del_RM(P) is known completely, has no simplex of dimension above m, and is pure"}},
+                     kShown);
     }
     for (const auto& s : tops) {
       if (found.count(s)) continue;
       ++extra;
       if (!R.covering_certified) continue;  // not proven absent
-      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      by_completeness("a simplex of the complex is not in Del_RM(P)");
       rd.add_witness({{"kind", "not_restricted"}, {"simplex", s},
                       {"detail", "the restricted Voronoi cells of all points were computed completely (check 11) and "
                                  "no point of M is equidistant from these m + 1 points and closer to them than to every "
-                                 "other point"}});
+                                 "other point"}},
+                     kShown);
     }
     rd.claim = {{"kind", "restricted"}, {"meaning", "the complex is the restricted Delaunay complex Del_RM(P)"}};
   }
   const bool known = R.covering_certified && !unresolved;
-  rd.details = {{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
-                {"possibly_impure_faces", unresolved}, {"possibly_impure", impure},
-                {"lower_faces_in_no_m_simplex", R.lower_faces.size()},
-                {"pure", R.covering_certified && !R.lower_faces.empty() ? json(false) : known ? json(true) : json(nullptr)}};
-  if (claimed && given) rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
+  rd.details.update(json{{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
+                         {"possibly_impure_faces", unresolved}, {"possibly_impure", impure},
+                         {"lower_faces_in_no_m_simplex", R.lower_faces.size()},
+                         {"pure", impure_known ? json(false) : known ? json(true) : json(nullptr)}});
+  if (claimed && given) {
+    rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
+    if (R.covering_certified) rd.details["m_simplices_equal_to_the_complex"] = tops_equal;
+  }
   rd.summary = std::to_string(R.simplices.size()) + " m-simplices of Del_RM(P) certified" +
                (R.covering_certified ? " (all of them)" : " (maybe not all)") +
-               (R.covering_certified && !R.lower_faces.empty() ? "; not pure: " + std::to_string(R.lower_faces.size()) +
-                                                                     " simplices of lower dimension in no m-simplex"
+               (tops_equal ? ", exactly the complex's" : "") +
+               (impure_known ? "; Del_RM(P) is not pure, so it triangulates nothing: " + std::to_string(R.lower_faces.size()) +
+                                   " simplices of lower dimension in no m-simplex"
                 : unresolved || !R.lower_faces.empty() ? "; purity not proven" : "") +
-               (claimed && given ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
-                                       " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
-                                 : "");
+               (claimed && given && !tops_equal
+                    ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
+                          " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
+                    : "");
   return rd;
 }
 
@@ -1399,6 +1444,7 @@ Certificate run_certify(const CertifyOptions& o) {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
     ro.expected = &K.simplices;
+    ro.distance_to_M = &sanity.distance_to_M;
     // THE GRAPH LEMMA (rvd.cpp) in codimension >= 4 only, where excluding the other sheets box by box
     // (2k searches of a k-dimensional slab) never ends (SO(3)); below, it is as fast and assumes nothing.
     if (spec.reach && N - m >= 4) ro.cell.reach = sqrt_lower(spec.reach->squared);
@@ -1415,7 +1461,8 @@ Certificate run_certify(const CertifyOptions& o) {
     R = compute_restricted_delaunay(system, P, grid, ro);
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
     covering = check_covering(*R, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
-    restricted = check_restricted(*R, in.given, restricted_kind, m);
+    const RecheckInput recheck{&spec.equations, spec.selector ? &*spec.selector : nullptr, &P};
+    restricted = check_restricted(*R, in.given, restricted_kind, m, recheck);
     // Del_RM(P) known completely rests on check 11's covering argument, whether or not a covering radius is claimed.
     restricted->details["assumptions"] = covering->details["assumptions"];
     equal = on_M ? check_tangential_equals_restricted(*stars, *R)

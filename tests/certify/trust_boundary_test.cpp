@@ -199,8 +199,12 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // proofs (~110), the driver's widening loop, per-block result slots and the halo's reports
   // (~80), the two searches' coverage tests (~20): 10784, so 10800. main stood at 10898 after issue 39's guard on
   // UNDECIDED checks' certified bounds; the claims per mode (issue 43: is_claimed, the one pass that reports what is
-  // not claimed, the line naming the deciding claims, the guard on a reported CERTIFIED, ~85 net): 10981, so 11000.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11000) << "certify/ should stay small enough to read whole";
+  // not claimed, the line naming the deciding claims, the guard on a reported CERTIFIED, ~85 net): 10981. Issue 39
+  // item 2: the independent re-check of check 12's refuting witnesses (restricted_recheck.*, ~230 lines of which ~60
+  // the proof: a REFUTED printed on a witness that does not hold was the defect), the covering argument's anchor and
+  // the balls grown by the distance to M (restricted.*, ~35), check 12's re-checked witnesses and "not pure" wording
+  // (~45): about 11290, so 11400.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11400) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
