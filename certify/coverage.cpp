@@ -263,8 +263,8 @@ CoverageSearch search_coverage(const exact::ImplicitSystem& system, const exact:
         out.reason = "a box of the bounding box is neither proven free of M nor within r of a sample point";
       continue;
     }
+    const double mid = X[widest].midpoint();  // before `it` (and X, a reference into it) is moved from
     Item lo = it, hi = std::move(it);
-    const double mid = X[widest].midpoint();
     lo.X[widest].hi = mid, hi.X[widest].lo = mid;
     stack.push_back(std::move(hi));
     stack.push_back(std::move(lo));

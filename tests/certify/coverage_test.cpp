@@ -146,5 +146,24 @@ TEST(Coverage, SearchFindsAHoleInTheSample) {
   EXPECT_GE(out.far->x[2].lo, 0.6);
 }
 
+// N = 9 (more coordinates than a box keeps inline): SO(3) searched in a small box around the identity,
+// P two rotations by pi far from it. The search bisects down to its size limit, and Krawczyk on the
+// six equations (three coordinates fixed) proves a rotation there, with det > 0 (the selector).
+TEST(Coverage, SearchFindsAFarRotationInNineDimensions) {
+  io::PointSet P = make_points(9, {{1, 0, 0, 0, -1, 0, 0, 0, -1}, {-1, 0, 0, 0, 1, 0, 0, 0, -1}});
+  SearchCase S(fixture("manifolds/so3.json"), std::move(P));
+  ASSERT_TRUE(S.spec.selector);
+  exact::Box B;
+  for (int v = 0; v < 9; ++v) {
+    const double centre = v % 4 == 0 ? 1 : 0;  // the identity matrix, row by row
+    B.push_back({centre - 0.03, centre + 0.05});
+  }
+  const CoverageSearch out = search_coverage(S.system, &*S.spec.selector, S.P, S.grid, B, 0.08, 0.16, 0.0801);
+  EXPECT_FALSE(out.covered);
+  ASSERT_TRUE(out.far) << out.reason;
+  EXPECT_GE(out.far->distance_lower, 2.5);  // |I - diag(1, -1, -1)| = sqrt(8)
+  for (int v = 0; v < 9; ++v) EXPECT_NEAR(out.far->x[v].midpoint(), v % 4 == 0 ? 1 : 0, 0.2) << v;
+}
+
 }  // namespace
 }  // namespace delcert::certify::test
