@@ -5,7 +5,8 @@
 // clifford-torus-3, torus-of-revolution; so3 has none, see fixtures/manifolds), and huge- and
 // tiny-magnitude variants (the input scaled by 2^k, the spec scaled accordingly), which must
 // still certify. Variants that must keep the verdict: one-ulp moves of points of a valid input.
-// At least 1,000 mutants per run; the tally per kind is printed.
+// At least 1,000 mutants per run; the tally per kind is printed. One more kind runs checks 11-12:
+// a sample of two spheres with one component emptied (EmptiedComponentMutantsAreNeverCertified).
 #include <map>
 
 #include "exact/number_types.hpp"
