@@ -937,7 +937,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const CoverageProof& cove
   } else {
     cov.margin = {{"covering_radius",
                    {{"certified_lower_bound", num(lower)},
-                    {"upper_bound", "not proven: " + (R.covering_certified ? std::string("no restricted Voronoi vertex was found")
+                    {"upper_bound", "not proven: " + (R.covering_certified ? coverage.reason
                                                                             : R.reason)}}}};
   }
   cov.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_lower_bound", lower,
@@ -998,7 +998,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const CoverageProof& cove
   for (const auto& c : R.cells) undecided_boxes += static_cast<long>(c.undecided.size());
   cov.details["undecided_boxes"] = undecided_boxes;
   cov.summary = (upper_proven ? "P is an eps-sample of M with eps <= " + num(R.covering)
-                              : "covering radius not certified (" + (R.covering_certified ? std::string("no restricted Voronoi vertex was found") : R.reason) + ")") +
+                              : "covering radius not certified (" + (R.covering_certified ? coverage.reason : R.reason) + ")") +
                 (far && far->distance_lower >= R.vertex_distance_lower ? "; a point of M is at distance >= " : "; a restricted Voronoi vertex is at distance >= ") + num(lower) + " from P" +
                 (claim ? "; claim " + exact::rational_to_string(*claim) : "") +
                 (per_point ? "; claim eps(p) per point (" + per_point_file + "), tightest cell " +
