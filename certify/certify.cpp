@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "certify/coverage.hpp"
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
 #include "certify/detail/world.hpp"
@@ -839,21 +840,25 @@ void sharpen_per_point_cells(RestrictedDelaunay& R, const std::vector<mpq_class>
 // with nearest point p lies in p's kept boxes) and every cell's certified bound is below eps(p);
 // REFUTED by a certified restricted Voronoi vertex at distance >= eps(q) from a point q of its
 // simplex (the vertex is in Vor(q), at the same distance from every point of the simplex).
-CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_class>& claim,
+// COVERAGE (certify/coverage.hpp): R.covering_certified includes that all of M is within c of P;
+// a certified point of M farther from P than the claim (than c without a claim) refutes it.
+CheckEntry check_covering(const RestrictedDelaunay& R, const CoverageProof& coverage, const std::optional<mpq_class>& claim,
                           const io::ManifoldSpec& spec, const std::vector<mpq_class>* per_point = nullptr,
                           const std::string& per_point_file = {}) {
   CheckEntry cov(CheckId::covering);
-  const bool one_component = !spec.expected.betti_z2.empty() && spec.expected.betti_z2[0] == 1;
-  const bool anchored = !R.simplices.empty();
   if (!R.covering_certified) cov.undecide(R.reason);
-  else if (!anchored) cov.undecide("no restricted Voronoi vertex was found: no component of M is known to be sampled");
   // R.covering (and every cell's covering_bound) bounds d(x, P) only under the covering argument: when it
   // fails they are maxima over the decided boxes, below the truth as often as not (the 16 vertices of a
-  // tesseract on S^3: 0.99253 where the covering radius is 1). They are printed as certified only then.
-  const bool upper_proven = R.covering_certified && anchored;
+  // tesseract on S^3: 0.99253 where the covering radius is 1). They are printed as certified only then, and
+  // only with all of M proven within reach of P (coverage.proven: no component of M left unsampled).
+  const bool upper_proven = R.covering_certified && coverage.proven;
+  if (R.covering_certified && !coverage.proven) cov.undecide(coverage.reason);
+  // A point of M far from P (coverage.search->far) refutes a claimed covering radius it reaches; without a claim it
+  // refutes nothing the input says: only c, the certifier's own bound, which is then not printed (UNDECIDED).
+  const FarPoint* far = coverage.search && coverage.search->far ? &*coverage.search->far : nullptr;
   // A certified lower bound of max_x d(x, P), proven in every case: the farthest restricted Voronoi vertex found
-  // (a point of M whose nearest sample points are its simplex's, each certified on its own).
-  const double lower = R.vertex_distance_lower;
+  // (a point of M whose nearest sample points are its simplex's, each certified on its own), or the far point.
+  const double lower = std::max(R.vertex_distance_lower, far ? far->distance_lower : 0.0);
   if (claim) {
     cov.claim = {{"covering", exact::rational_to_string(*claim)},
                  {"meaning", "P is an eps-sample of M: d(x, P) < covering for every x in M"}};
@@ -871,6 +876,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
     } else if (!(R.covering < e.lo) && cov.verdict == Verdict::certified) {
       cov.undecide("the certified covering bound is not below the claim");
     }
+    if (far && far->distance_lower >= e.hi) cov.refute("a point of M is at distance >= the claimed covering radius from P");
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, *claim);
   }
   json worst_cell, per_point_details;
@@ -906,6 +912,8 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                                      {"certified_upper_bound", num(R.cells[p].covering_bound)}};
       if (!(R.cells[p].covering_bound < e.lo)) ++not_below;
     }
+    if (far && far->distance_lower >= exact::enclose(eps_max).hi)
+      cov.refute("a point of M is at distance >= max eps(p) from P, so >= eps(q) from its nearest point q");
     if (not_below > 0 && cov.verdict == Verdict::certified)
       cov.undecide(std::to_string(not_below) + " cells' certified covering bound is not below their eps(p)");
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, eps_max);
@@ -927,11 +935,11 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   } else {
     cov.margin = {{"covering_radius",
                    {{"certified_lower_bound", num(lower)},
-                    {"upper_bound", "not proven: " + (R.covering_certified ? std::string("no restricted Voronoi vertex was found")
+                    {"upper_bound", "not proven: " + (R.covering_certified ? coverage.reason
                                                                             : R.reason)}}}};
   }
   cov.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_lower_bound", lower,
-                                        "the farthest certified restricted Voronoi vertex");
+                                        "the farthest certified restricted Voronoi vertex or point of M far from P");
   cov.details = {{"assumptions",
                   {{"charts", R.reach_slabs == 0 && R.rational_chart_cells == 0
                                   ? "none: no reach and no graph property is assumed; the other sheets of "
@@ -945,10 +953,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                                                  : "the reach of M is at least " + spec.reach->text + " (the spec's, " +
                                                        "assumed): the graph lemma (docs/design.md §3.8) took " +
                                                        std::to_string(R.reach_slabs) + " chart slabs"},
-                   {"components", one_component ? "the spec's expected b0 = 1: M is connected and holds a restricted "
-                                                  "Voronoi vertex"
-                                                : "every connected component of M holds a restricted Voronoi vertex "
-                                                  "(not checked: the spec gives no b0 = 1)"}}},
+                   {"components", coverage.argument}}},
                  {"min_analysed_radius", num(R.min_radius)},
                  {"rounds", R.rounds_used},
                  {"incomplete_cells", R.incomplete_points.size()},
@@ -957,8 +962,25 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                  {"krawczyk_calls", R.krawczyk_calls},
                  {"krawczyk_failures", R.krawczyk_failures}};
   if (per_point) cov.details["per_point"] = per_point_details;
-  if (!one_component && cov.verdict == Verdict::certified)
-    cov.details["note"] = "certified under the stated component assumption";
+  if (far) {
+    json w = {{"kind", "point_of_M_far_from_P"},
+              {"point_enclosure", box_json(far->x)},
+              {"distance_to_P", {{"certified_lower_bound", num(far->distance_lower)}}},
+              {"nearest_sample_point", far->nearest},
+              {"detail", "Krawczyk proves exactly one point of M in this box (N - m coordinates free, the others "
+                         "fixed); every sample point is at least distance_to_P from every point of the box"}};
+    cov.bound_proven_whatever_the_verdict("/witnesses/" + std::to_string(cov.witnesses.size()) +
+                                              "/distance_to_P/certified_lower_bound",
+                                          far->distance_lower, "a point of M certified by Krawczyk, its distance to all of P");
+    cov.add_witness(w);
+  }
+  if (const auto& S = coverage.search) {
+    json u = json::array();
+    for (const auto& x : S->undecided) u.push_back(location_json(x));
+    cov.details["coverage_search"] = {{"boxes", S->boxes}, {"free_of_M", S->excluded}, {"inside_a_ball", S->inside_balls},
+                                      {"krawczyk_calls", S->krawczyk_calls}, {"undecided_boxes", S->undecided_boxes},
+                                      {"undecided_at", u}, {"size_limit", num(S->size_limit)}};
+  }
   json undecided = json::array();
   for (int p : R.incomplete_points) {
     if (undecided.size() >= 10) break;
@@ -974,8 +996,8 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   for (const auto& c : R.cells) undecided_boxes += static_cast<long>(c.undecided.size());
   cov.details["undecided_boxes"] = undecided_boxes;
   cov.summary = (upper_proven ? "P is an eps-sample of M with eps <= " + num(R.covering)
-                              : "covering radius not certified (" + (R.covering_certified ? std::string("no restricted Voronoi vertex was found") : R.reason) + ")") +
-                "; a restricted Voronoi vertex is at distance >= " + num(lower) + " from P" +
+                              : "covering radius not certified (" + (R.covering_certified ? coverage.reason : R.reason) + ")") +
+                (far && far->distance_lower >= R.vertex_distance_lower ? "; a point of M is at distance >= " : "; a restricted Voronoi vertex is at distance >= ") + num(lower) + " from P" +
                 (claim ? "; claim " + exact::rational_to_string(*claim) : "") +
                 (per_point ? "; claim eps(p) per point (" + per_point_file + "), tightest cell " +
                                  (worst_cell.is_null() ? std::string(upper_proven ? "none" : "not known") : worst_cell["point"].dump() + ": bound " +
@@ -1460,7 +1482,18 @@ Certificate run_certify(const CertifyOptions& o) {
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
-    covering = check_covering(*R, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
+    // COVERAGE (certify/coverage.hpp): every point of M within c of P, or a far point of M refuting
+    // the claim (without one: above c), found and stops the search.
+    watch.record(C, "restricted_delaunay");
+    double target = std::nextafter(R->covering, INFINITY);
+    if (claims.covering) target = exact::enclose(*claims.covering).hi;
+    if (covering_per_point)
+      for (const auto& e : *covering_per_point) target = std::max(target, exact::enclose(e).hi);
+    const CoverageProof coverage = prove_coverage(system, ro.cell.selector, spec.bounding_box,
+                                                  shape.shape ? shape.metric : "", P, grid, *R, target);
+    if (!coverage.proven) R->covering_certified = false, R->reason = coverage.reason;
+    watch.record(C, "coverage");
+    covering = check_covering(*R, coverage, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
     const RecheckInput recheck{&spec.equations, spec.selector ? &*spec.selector : nullptr, &P};
     restricted = check_restricted(*R, in.given, restricted_kind, m, recheck);
     // Del_RM(P) known completely rests on check 11's covering argument, whether or not a covering radius is claimed.
@@ -1468,7 +1501,7 @@ Certificate run_certify(const CertifyOptions& o) {
     equal = on_M ? check_tangential_equals_restricted(*stars, *R)
                  : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0]);
   }
-  watch.record(C, "restricted_delaunay");
+  watch.record(C, "checks_11_13");
 
   if (on_M) {
     // Checks 7 and 9: the paper's hypotheses, measured; eps is also a sampling radius when check

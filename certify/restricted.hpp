@@ -18,9 +18,10 @@
 // no value in (c, min_p r_p), a non-empty interval, and on each connected component of M the
 // image of f is an interval: it lies in [0, c] as soon as the component has one point with
 // f <= c. Every restricted Voronoi vertex found is such a point. So if every component of M holds
-// a restricted Voronoi vertex, P is a c-sample of M: d(x, P) <= c < eps' for every x in M. The
-// certificate states the assumption "every component of M holds one" and checks it against the
-// spec's expected b0 when given (b0 = 1: one vertex suffices); it cannot count components of M.
+// a restricted Voronoi vertex, P is a c-sample of M: d(x, P) <= c < eps' for every x in M. That
+// no component of M is left out is not assumed: certify/coverage.hpp proves it (a verified
+// connected shape, or a search of the spec's bounding box), and run_certify clears
+// covering_certified when it cannot; the spec's expected Betti numbers are never a premise.
 // Under the same conditions, every restricted Voronoi vertex of P lies within c of its points,
 // hence inside the analysed balls: the vertices found are ALL of them, and the purity test of
 // rvd.hpp covers every restricted Voronoi face.
@@ -95,7 +96,8 @@ struct RestrictedDelaunay {
   // Voronoi vertex or a face point found). Without one, f = d(., P) may stay above min_p r_p on all
   // of M (every point of P farther from M than its ball reaches: every cell is then complete and
   // empty, c = 0), and nothing is known about Del_RM(P). Then `simplices` are all the m-simplices
-  // of Del_RM(P) on the components of M that hold an anchor.
+  // of Del_RM(P) on the components of M that hold an anchor; run_certify also requires coverage of
+  // all of M (certify/coverage.hpp), and then `simplices` are all the m-simplices of Del_RM(P).
   bool covering_certified = false;
   std::string reason;                       // why not, when not
   long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0, reach_slabs = 0;

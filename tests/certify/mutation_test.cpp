@@ -5,7 +5,8 @@
 // clifford-torus-3, torus-of-revolution; so3 has none, see fixtures/manifolds), and huge- and
 // tiny-magnitude variants (the input scaled by 2^k, the spec scaled accordingly), which must
 // still certify. Variants that must keep the verdict: one-ulp moves of points of a valid input.
-// At least 1,000 mutants per run; the tally per kind is printed.
+// At least 1,000 mutants per run; the tally per kind is printed. One more kind runs checks 11-12:
+// a sample of two spheres with one component emptied (EmptiedComponentMutantsAreNeverCertified).
 #include <array>
 #include <map>
 #include <set>
@@ -474,6 +475,63 @@ bool registered(const CheckEntry& e, const Pointer& p) {
   for (const auto& b : e.proven_whatever_the_verdict)
     if (b.pointer == s) return true;
   return false;
+}
+
+// A sample with one component emptied (issue 39.1): M is two unit spheres 5 apart
+// (fixtures/soundness/components/two-spheres.json), the base samples both (a Fibonacci sample of each,
+// randomly rotated) and certifies covering 1/4 (check 11 CERTIFIED, so the test can fail); the mutant
+// keeps one sphere's points only, and checks 11 and 12 (whose completeness rests on 11) must not be
+// CERTIFIED. The spec's expected b0 = 1 is wrong for M: it must play no part (check 8 only).
+TEST(Mutation, EmptiedComponentMutantsAreNeverCertified) {
+  TempDir dir("mut-components");
+  const std::string claims = dir.file("claims.json");
+  write_text(claims, R"({"format": "delcert-claims v2", "covering": "1/4"})");
+  auto certify = [&](const io::PointSet& P) {
+    CertifyOptions o;
+    o.manifold = fixture("soundness/components/two-spheres.json");
+    o.points = dir.file("points.txt");
+    o.claims = claims;
+    io::write_points(o.points, P);
+    return run_certify(o);
+  };
+  int mutants = 0;
+  const int seeds = test_scale() >= 1 ? 2 : 1;
+  for (int seed = 0; seed < seeds; ++seed) {
+    Rng rng(700 + static_cast<std::uint64_t>(seed));
+    // A random rotation (a unit quaternion) per sphere.
+    auto rotated = [&](double dz) {
+      double a[4], n = 0;
+      for (double& v : a) v = rng.uniform() - 0.5, n += v * v;
+      for (double& v : a) v /= std::sqrt(n);
+      const auto [w, x, y, z] = a;
+      const double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                              {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                              {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+      io::PointSet S = fibonacci_sphere(300), out;
+      out.dimension = 3;
+      for (std::size_t i = 0; i < S.size(); ++i) {
+        std::vector<double> p(3);
+        for (int r = 0; r < 3; ++r) p[r] = R[r][0] * S.point(i)[0] + R[r][1] * S.point(i)[1] + R[r][2] * S.point(i)[2];
+        p[2] += dz;
+        out.push_back(p);
+      }
+      return out;
+    };
+    const io::PointSet first = rotated(0), second = rotated(5);
+    io::PointSet both = first;
+    both.coordinates.insert(both.coordinates.end(), second.coordinates.begin(), second.coordinates.end());
+    const Certificate base = certify(both);
+    ASSERT_EQ(check(base, CheckId::covering).verdict, Verdict::certified) << check(base, CheckId::covering).summary;
+    for (const io::PointSet* kept : {&first, &second}) {
+      const Certificate c = certify(*kept);
+      ++mutants;
+      EXPECT_EQ(check(c, CheckId::covering).verdict, Verdict::refuted) << check(c, CheckId::covering).summary;
+      EXPECT_NE(check(c, CheckId::restricted_delaunay).decision(), Verdict::certified);
+      EXPECT_NE(c.overall(), Verdict::certified);
+    }
+  }
+  std::printf("[ mutants  ] component emptied: %d, none certified\n", mutants);
+  EXPECT_GE(mutants, 2);
 }
 
 TEST(Mutation, CertifiedBoundsUnderUndecidedAreCaughtByTheGuard) {

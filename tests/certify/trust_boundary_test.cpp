@@ -203,8 +203,10 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // item 2: the independent re-check of check 12's refuting witnesses (restricted_recheck.*, ~230 lines of which ~60
   // the proof: a REFUTED printed on a witness that does not hold was the defect), the covering argument's anchor and
   // the balls grown by the distance to M (restricted.*, ~35), check 12's re-checked witnesses and "not pure" wording
-  // (~45): about 11290, so 11400.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11400) << "certify/ should stay small enough to read whole";
+  // (~45): about 11290. Coverage of all of M (issue 39.1): the box search of the bounding box with
+  // the far point's Krawczyk and distance bound, and their proof (coverage.*, ~420), check 11's witness and the
+  // driver (~35 net): about 11750, so 11800.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11800) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
