@@ -103,12 +103,16 @@ std::vector<std::string> Certificate::self_check_failures() const {
                         text + ", a bound its verdict does not prove");
       }
     }
-    if (c.verdict != Verdict::certified) continue;
+    // A check that is not a claim still prints its bounds as certified when it decided CERTIFIED (decision()):
+    // they must not contradict it either. Any other decision implies nothing about them.
+    const bool reported = c.verdict == Verdict::report;
+    if (c.decision() != Verdict::certified) continue;
     for (const auto& r : c.requirements) {
       // Written so that NaN fails too.
       const bool ok = r.at_least ? r.value >= r.bound : r.value <= r.bound;
       if (!ok)
-        out.push_back("check " + std::to_string(c.number()) + " (" + c.name() + ") is CERTIFIED but its certified " + r.what + " " +
+        out.push_back("check " + std::to_string(c.number()) + " (" + c.name() + ") is CERTIFIED" +
+                      (reported ? " (reported, not claimed)" : "") + " but its certified " + r.what + " " +
                       num(r.value) + (r.at_least ? " is below " : " is above ") + r.bound_text);
     }
   }
@@ -126,10 +130,31 @@ void enforce_self_consistency(const Certificate& certificate) {
 Verdict Certificate::overall() const {
   bool undecided = false;
   for (const auto& c : checks) {
+    if (!c.claimed) continue;
     if (c.verdict == Verdict::refuted) return Verdict::refuted;
     undecided = undecided || c.verdict == Verdict::undecided;
   }
   return undecided ? Verdict::undecided : Verdict::certified;
+}
+
+std::string Certificate::decided_by() const {
+  // One group per verdict, the overall verdict's first; a CERTIFIED verdict has only its own group.
+  const Verdict overall_verdict = overall();
+  std::string out;
+  for (const Verdict v : {Verdict::refuted, Verdict::undecided, Verdict::certified}) {
+    std::string group;
+    for (const auto& c : checks) {
+      if (!c.claimed || c.verdict != v) continue;
+      group += std::string(group.empty() ? "" : ", ") + "check " + std::to_string(c.number()) + " " + c.name();
+      // The claim about the given complex says what it is claimed to be.
+      const bool about_kind = c.claim.is_object() && c.claim.contains("kind");
+      if (about_kind && c.claim["kind"] == "restricted") group += " (the complex is Del_RM(P))";
+      if (about_kind && c.claim["kind"] == "intrinsic") group += " (the complex is Del_M(P))";
+    }
+    if (group.empty()) continue;
+    out += (out.empty() ? "" : "; ") + (overall_verdict == Verdict::certified ? "" : std::string(to_string(v)) + " ") + group;
+  }
+  return out.empty() ? "no claimed check" : out;
 }
 
 json Certificate::to_json(bool with_times) const {
@@ -145,6 +170,7 @@ json Certificate::to_json(bool with_times) const {
     e["id"] = c.number();
     e["name"] = c.name();
     e["verdict"] = to_string(c.verdict);
+    e["claimed"] = c.claimed;
     e["summary"] = c.summary;
     e["claim"] = c.claim;
     e["margin"] = c.margin;
@@ -184,7 +210,7 @@ std::string Certificate::to_text(bool with_times) const {
   ojson cs = ojson::array();
   for (const auto& c : j["checks"]) {
     ojson e;
-    for (const char* k : {"id", "name", "verdict", "summary", "claim", "margin", "witnesses", "details"}) e[k] = O(c[k]);
+    for (const char* k : {"id", "name", "verdict", "claimed", "summary", "claim", "margin", "witnesses", "details"}) e[k] = O(c[k]);
     cs.push_back(std::move(e));
   }
   o["checks"] = cs;

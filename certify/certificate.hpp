@@ -43,6 +43,10 @@ struct CheckEntry {
   nlohmann::json margin;                               // certified bounds, or null
   nlohmann::json witnesses = nlohmann::json::array();  // small, re-checkable by hand
   nlohmann::json details = nlohmann::json::object();
+  // A claim of this input: its verdict counts in the overall verdict. A check that is not a claim of the mode
+  // (claimed_checks in certify.hpp) is computed and reported: verdict REPORT, its own decision in
+  // details.decision. Written in the certificate as "claimed".
+  bool claimed = true;
 
   // Lowers the verdict: refuted beats undecided beats certified (report stays report).
   void refute(std::string why);
@@ -96,11 +100,17 @@ struct Certificate {
   exact::FilterStats filter;
   std::vector<std::pair<std::string, double>> times;  // seconds, wall clock
 
-  // REFUTED if any check is refuted, else UNDECIDED if any is undecided, else CERTIFIED.
+  // Over the claimed checks: REFUTED if any is refuted, else UNDECIDED if any is undecided, else
+  // CERTIFIED. REPORT entries and checks that are not claims never change it.
   Verdict overall() const;
-  // One line per violated requirement of a CERTIFIED check (see CheckEntry::requirements) and per
-  // certified bound an UNDECIDED check prints without having registered it as proven whatever the
-  // verdict (CheckEntry::proven_whatever_the_verdict); empty when the certificate is consistent with itself.
+  // The claims that decided overall(), for the line before the verdict: the refuted ones first,
+  // then the undecided, then the certified ("check 12 restricted_delaunay (the complex is
+  // Del_RM(P))", ...).
+  std::string decided_by() const;
+  // One line per violated requirement of a check decided CERTIFIED (decision(): claimed, or only reported, since a
+  // reported bound is printed as certified too; see CheckEntry::requirements) and per certified bound a check decided
+  // UNDECIDED prints without having registered it as proven whatever the verdict
+  // (CheckEntry::proven_whatever_the_verdict); empty when the certificate is consistent with itself.
   std::vector<std::string> self_check_failures() const;
   // `with_times = false` leaves the only non-deterministic field out (byte-identical reruns).
   nlohmann::json to_json(bool with_times = true) const;

@@ -9,12 +9,14 @@
 #include <optional>
 #include <set>
 
+#include "certify/coverage.hpp"
 #include "certify/detail/grid.hpp"
 #include "certify/detail/parallel.hpp"
 #include "certify/detail/world.hpp"
 #include "certify/distributed.hpp"
 #include "certify/intrinsic.hpp"
 #include "certify/restricted.hpp"
+#include "certify/restricted_recheck.hpp"
 #include "certify/sanity.hpp"
 #include "certify/detail/sha256.hpp"
 #include "certify/star.hpp"
@@ -671,15 +673,15 @@ CheckEntry check_topology(const io::Complex& K, int m, const FaceLattice& lattic
   return topo;
 }
 
-// A check that is not a claim of this input: its decision is reported (details.decision), not held against the input.
+// A check that is not a claim of this input (is_claimed): its decision is reported (details.decision), not held
+// against the input. Its requirements stay: the consistency guard still holds a reported CERTIFIED to its bounds.
 void report_unclaimed(CheckEntry& e) {
   e.details["decision"] = to_string(e.verdict);
   e.verdict = Verdict::report;
-  e.summary += " [not claimed]";
 }
 
 // Check 7: are the star simplices secure (paper Definition 3.1), with the parameters that check 9 derives from the
-// measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (else REPORT).
+// measured values? Decided only with eps a certified sampling radius; a claim only with "secure": true (is_claimed).
 CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S, const std::vector<StarReport>& reports,
                                   int threads, std::vector<exact::FilterContext>& ctx, bool claimed,
                                   bool stars_are_the_complex, io::ProgressLine* progress, Distribution& D) {
@@ -691,7 +693,6 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
   if (!tp.usable) {
     secure.undecide("not evaluated: " + tp.why);
     secure.summary = "not evaluated: " + tp.why;
-    if (!claimed) report_unclaimed(secure);
     return secure;
   }
   const std::size_t n = reports.size();
@@ -742,7 +743,6 @@ CheckEntry check_secure_simplices(const TheoremParams& tp, const StarSettings& S
                    (skipped ? "; " + std::to_string(skipped) + " not evaluated (more than 50 000 points within 5 eps)" : "") +
                    (no_halo ? "; " + std::to_string(no_halo) + " not evaluated (an MPI rank's halo too small)" : "");
   if (no_halo) secure.details["not_evaluated_halo_too_small"] = no_halo;
-  if (!claimed) report_unclaimed(secure);
   return secure;
 }
 
@@ -799,15 +799,14 @@ CheckEntry not_computed(CheckId id, const std::string& why = "") {
 }
 
 // The checks that need T_p M at every point (Del_TM and what is measured on it), when some point is off M: accepted
-// only for a complex claimed to be restricted Delaunay (check 1), they are not computed. REPORT (Del_TM is not what
-// the input claims), UNDECIDED where the claims file makes a claim the check would have decided.
-CheckEntry tangent_space_undefined(CheckId id, int point, bool claimed) {
+// only for a complex claimed to be restricted Delaunay (check 1), they are not computed: UNDECIDED, which counts
+// only where the claims file makes a claim the check would have decided (is_claimed; else reported).
+CheckEntry tangent_space_undefined(CheckId id, int point) {
   CheckEntry e(id);
   const std::string why = "point " + std::to_string(point) +
                           " is off M (residual above the spec's residual_tolerance), where T_p M is not defined, "
                           "so Del_TM(P) is not computed";
-  if (claimed) e.undecide(why);
-  else e.verdict = Verdict::report;
+  e.undecide(why);
   e.summary = "not computed: " + why;
   return e;
 }
@@ -841,21 +840,25 @@ void sharpen_per_point_cells(RestrictedDelaunay& R, const std::vector<mpq_class>
 // with nearest point p lies in p's kept boxes) and every cell's certified bound is below eps(p);
 // REFUTED by a certified restricted Voronoi vertex at distance >= eps(q) from a point q of its
 // simplex (the vertex is in Vor(q), at the same distance from every point of the simplex).
-CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_class>& claim,
+// COVERAGE (certify/coverage.hpp): R.covering_certified includes that all of M is within c of P;
+// a certified point of M farther from P than the claim (than c without a claim) refutes it.
+CheckEntry check_covering(const RestrictedDelaunay& R, const CoverageProof& coverage, const std::optional<mpq_class>& claim,
                           const io::ManifoldSpec& spec, const std::vector<mpq_class>* per_point = nullptr,
                           const std::string& per_point_file = {}) {
   CheckEntry cov(CheckId::covering);
-  const bool one_component = !spec.expected.betti_z2.empty() && spec.expected.betti_z2[0] == 1;
-  const bool anchored = !R.simplices.empty();
   if (!R.covering_certified) cov.undecide(R.reason);
-  else if (!anchored) cov.undecide("no restricted Voronoi vertex was found: no component of M is known to be sampled");
   // R.covering (and every cell's covering_bound) bounds d(x, P) only under the covering argument: when it
   // fails they are maxima over the decided boxes, below the truth as often as not (the 16 vertices of a
-  // tesseract on S^3: 0.99253 where the covering radius is 1). They are printed as certified only then.
-  const bool upper_proven = R.covering_certified && anchored;
+  // tesseract on S^3: 0.99253 where the covering radius is 1). They are printed as certified only then, and
+  // only with all of M proven within reach of P (coverage.proven: no component of M left unsampled).
+  const bool upper_proven = R.covering_certified && coverage.proven;
+  if (R.covering_certified && !coverage.proven) cov.undecide(coverage.reason);
+  // A point of M far from P (coverage.search->far) refutes a claimed covering radius it reaches; without a claim it
+  // refutes nothing the input says: only c, the certifier's own bound, which is then not printed (UNDECIDED).
+  const FarPoint* far = coverage.search && coverage.search->far ? &*coverage.search->far : nullptr;
   // A certified lower bound of max_x d(x, P), proven in every case: the farthest restricted Voronoi vertex found
-  // (a point of M whose nearest sample points are its simplex's, each certified on its own).
-  const double lower = R.vertex_distance_lower;
+  // (a point of M whose nearest sample points are its simplex's, each certified on its own), or the far point.
+  const double lower = std::max(R.vertex_distance_lower, far ? far->distance_lower : 0.0);
   if (claim) {
     cov.claim = {{"covering", exact::rational_to_string(*claim)},
                  {"meaning", "P is an eps-sample of M: d(x, P) < covering for every x in M"}};
@@ -873,6 +876,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
     } else if (!(R.covering < e.lo) && cov.verdict == Verdict::certified) {
       cov.undecide("the certified covering bound is not below the claim");
     }
+    if (far && far->distance_lower >= e.hi) cov.refute("a point of M is at distance >= the claimed covering radius from P");
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, *claim);
   }
   json worst_cell, per_point_details;
@@ -908,6 +912,8 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                                      {"certified_upper_bound", num(R.cells[p].covering_bound)}};
       if (!(R.cells[p].covering_bound < e.lo)) ++not_below;
     }
+    if (far && far->distance_lower >= exact::enclose(eps_max).hi)
+      cov.refute("a point of M is at distance >= max eps(p) from P, so >= eps(q) from its nearest point q");
     if (not_below > 0 && cov.verdict == Verdict::certified)
       cov.undecide(std::to_string(not_below) + " cells' certified covering bound is not below their eps(p)");
     if (cov.verdict == Verdict::certified) cov.require_at_most("covering_radius", R.covering, eps_max);
@@ -929,11 +935,11 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   } else {
     cov.margin = {{"covering_radius",
                    {{"certified_lower_bound", num(lower)},
-                    {"upper_bound", "not proven: " + (R.covering_certified ? std::string("no restricted Voronoi vertex was found")
+                    {"upper_bound", "not proven: " + (R.covering_certified ? coverage.reason
                                                                             : R.reason)}}}};
   }
   cov.bound_proven_whatever_the_verdict("/margin/covering_radius/certified_lower_bound", lower,
-                                        "the farthest certified restricted Voronoi vertex");
+                                        "the farthest certified restricted Voronoi vertex or point of M far from P");
   cov.details = {{"assumptions",
                   {{"charts", R.reach_slabs == 0 && R.rational_chart_cells == 0
                                   ? "none: no reach and no graph property is assumed; the other sheets of "
@@ -947,10 +953,7 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                                                  : "the reach of M is at least " + spec.reach->text + " (the spec's, " +
                                                        "assumed): the graph lemma (docs/design.md §3.8) took " +
                                                        std::to_string(R.reach_slabs) + " chart slabs"},
-                   {"components", one_component ? "the spec's expected b0 = 1: M is connected and holds a restricted "
-                                                  "Voronoi vertex"
-                                                : "every connected component of M holds a restricted Voronoi vertex "
-                                                  "(not checked: the spec gives no b0 = 1)"}}},
+                   {"components", coverage.argument}}},
                  {"min_analysed_radius", num(R.min_radius)},
                  {"rounds", R.rounds_used},
                  {"incomplete_cells", R.incomplete_points.size()},
@@ -959,8 +962,25 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
                  {"krawczyk_calls", R.krawczyk_calls},
                  {"krawczyk_failures", R.krawczyk_failures}};
   if (per_point) cov.details["per_point"] = per_point_details;
-  if (!one_component && cov.verdict == Verdict::certified)
-    cov.details["note"] = "certified under the stated component assumption";
+  if (far) {
+    json w = {{"kind", "point_of_M_far_from_P"},
+              {"point_enclosure", box_json(far->x)},
+              {"distance_to_P", {{"certified_lower_bound", num(far->distance_lower)}}},
+              {"nearest_sample_point", far->nearest},
+              {"detail", "Krawczyk proves exactly one point of M in this box (N - m coordinates free, the others "
+                         "fixed); every sample point is at least distance_to_P from every point of the box"}};
+    cov.bound_proven_whatever_the_verdict("/witnesses/" + std::to_string(cov.witnesses.size()) +
+                                              "/distance_to_P/certified_lower_bound",
+                                          far->distance_lower, "a point of M certified by Krawczyk, its distance to all of P");
+    cov.add_witness(w);
+  }
+  if (const auto& S = coverage.search) {
+    json u = json::array();
+    for (const auto& x : S->undecided) u.push_back(location_json(x));
+    cov.details["coverage_search"] = {{"boxes", S->boxes}, {"free_of_M", S->excluded}, {"inside_a_ball", S->inside_balls},
+                                      {"krawczyk_calls", S->krawczyk_calls}, {"undecided_boxes", S->undecided_boxes},
+                                      {"undecided_at", u}, {"size_limit", num(S->size_limit)}};
+  }
   json undecided = json::array();
   for (int p : R.incomplete_points) {
     if (undecided.size() >= 10) break;
@@ -976,8 +996,8 @@ CheckEntry check_covering(const RestrictedDelaunay& R, const std::optional<mpq_c
   for (const auto& c : R.cells) undecided_boxes += static_cast<long>(c.undecided.size());
   cov.details["undecided_boxes"] = undecided_boxes;
   cov.summary = (upper_proven ? "P is an eps-sample of M with eps <= " + num(R.covering)
-                              : "covering radius not certified (" + (R.covering_certified ? std::string("no restricted Voronoi vertex was found") : R.reason) + ")") +
-                "; a restricted Voronoi vertex is at distance >= " + num(lower) + " from P" +
+                              : "covering radius not certified (" + (R.covering_certified ? coverage.reason : R.reason) + ")") +
+                (far && far->distance_lower >= R.vertex_distance_lower ? "; a point of M is at distance >= " : "; a restricted Voronoi vertex is at distance >= ") + num(lower) + " from P" +
                 (claim ? "; claim " + exact::rational_to_string(*claim) : "") +
                 (per_point ? "; claim eps(p) per point (" + per_point_file + "), tightest cell " +
                                  (worst_cell.is_null() ? std::string(upper_proven ? "none" : "not known") : worst_cell["point"].dump() + ": bound " +
@@ -1001,8 +1021,19 @@ std::string equality(Verdict v, const std::string& a, const std::string& b) {
 
 // Check 12: Del_RM(P) computed (every m-simplex with a certified restricted Voronoi vertex; all
 // of them when the covering argument holds; pure when no face is in doubt) and, with --kind
-// restricted, compared with the given complex.
-CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io::Complex>& given, bool claimed, int m) {
+// restricted, compared with the given complex. Every REFUTED rests on witnesses re-checked by
+// certify/restricted_recheck.hpp before they are printed: a simplex of Del_RM(P) by its nearest-set
+// proof, a rejection by completeness by the covering argument's premises (a failure there is an
+// internal error, never a verdict).
+//
+// When Del_RM(P) is known completely and not pure (a face point: a simplex of it of dimension < m in
+// no m-simplex), the verdict is REFUTED: check 12 claims that Del_RM(P) is a pure m-complex (a
+// triangulation candidate) equal to the complex, and the face point proves the first part false.
+// If the complex's m-simplices are exactly Del_RM(P)'s, the complex is not what is wrong: the
+// summary and reason say so ("Del_RM(P) is not pure: it triangulates nothing"), and the lower faces
+// are not counted as missing from it (no pure m-complex could hold them as maximal simplices).
+CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io::Complex>& given, bool claimed, int m,
+                            const RecheckInput& recheck) {
   CheckEntry rd(CheckId::restricted_delaunay);
   if (!R.covering_certified) rd.undecide("Del_RM(P) not known completely: " + R.reason);
   long unresolved = 0;
@@ -1013,34 +1044,60 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (impure.size() < 10) impure.push_back({{"face", f.candidates}, {"at_point", c.point},
                                                {"location", location_json(f.location)}, {"why", f.reason}});
     }
+  // A refutation by completeness: its premise is re-checked once, before the first one is printed.
+  bool premise_checked = false;
+  auto by_completeness = [&](const std::string& why) {
+    if (!premise_checked) require_completeness(recheck, R, "check 12 (restricted_delaunay): " + why);
+    premise_checked = true;
+    rd.refute(why);
+  };
+  // Witnesses printed (CheckEntry::add_witness's cap), each re-checked; the first of each refutation
+  // (`first`) is re-checked even when the cap hides it: the verdict rests on it.
+  constexpr std::size_t kShown = 20;
+  auto proven = [&](const RestrictedSimplex& s, json w, const char* field, bool first) {
+    if (first || rd.witnesses.size() < kShown)
+      w[field] = box_json(require_nearest_set(recheck, s.simplex, s.vertex.x, "check 12 (restricted_delaunay)"));
+    rd.add_witness(std::move(w), kShown);
+  };
+  // The m-simplices of the complex, and whether they are exactly Del_RM(P)'s (when it is complete).
+  std::set<Simplex> tops, found;
+  if (claimed && given) tops = top_simplices(*given, m);
+  for (const auto& s : R.simplices) found.insert(s.simplex);
+  const bool tops_equal = claimed && given && R.covering_certified && tops == found;
+  const bool impure_known = !R.lower_faces.empty() && R.covering_certified;
   if (unresolved || (!R.lower_faces.empty() && !R.covering_certified))
     rd.undecide("Del_RM(P) may not be pure: a restricted Voronoi face of dimension > 0 may hold no vertex (see "
                 "details.possibly_impure and the face_point witnesses)");
-  if (!R.lower_faces.empty() && R.covering_certified) rd.refute("Del_RM(P) is not pure: a simplex of it is in no m-simplex");
-  for (const auto& f : R.lower_faces) rd.add_witness(face_witness(f, R.covering_certified));
+  if (impure_known)
+    by_completeness(tops_equal ? "Del_RM(P) is not pure: it triangulates nothing (the complex's m-simplices are exactly "
+                                 "Del_RM(P)'s; Del_RM(P) also holds a simplex of lower dimension in none of them, "
+                                 "which no complex of m-simplices can be)"
+                               : "Del_RM(P) is not pure: a simplex of it is in no m-simplex");
+  for (const auto& f : R.lower_faces)
+    impure_known ? proven(f, face_witness(f, true), "point_enclosure", &f == &R.lower_faces.front())
+                 : rd.add_witness(face_witness(f, false), kShown);
   for (const auto& f : R.cross_check_failures)
     rd.add_witness({{"kind", "cross_check_failure"}, {"simplex", f.simplex}, {"found_at", f.found_at},
-                    {"missed_at", f.missed_at}});
+                    {"missed_at", f.missed_at}}, kShown);
   long missing = 0, extra = 0;
   if (claimed && given) {
-    const std::set<Simplex> tops = top_simplices(*given, m);
-    std::set<Simplex> found;
     for (const auto& s : R.simplices) {
-      found.insert(s.simplex);
       if (tops.count(s.simplex)) continue;
       ++missing;  // certified without any assumption: refuted whatever else is undecided
       rd.refute("a simplex of Del_RM(P) is missing from the complex");
-      rd.add_witness(vertex_witness(s));
+      proven(s, vertex_witness(s), "vertex_enclosure", missing == 1);
     }
-    for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
-      if (std::any_of(given->simplices.begin(), given->simplices.end(), [&](Simplex t) {
-            std::sort(t.begin(), t.end());
-            return std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
-          }))
-        continue;
-      ++missing;
-      rd.refute("a simplex of Del_RM(P) is missing from the complex");
-    }
+    if (!tops_equal)
+      for (const auto& f : R.lower_faces) {  // in Del_RM without any assumption: missing unless a face of the complex
+        if (std::any_of(given->simplices.begin(), given->simplices.end(), [&](Simplex t) {
+              std::sort(t.begin(), t.end());
+              return std::includes(t.begin(), t.end(), f.simplex.begin(), f.simplex.end());
+            }))
+          continue;
+        ++missing;
+        rd.refute("a simplex of Del_RM(P) is missing from the complex");
+        if (!impure_known) proven(f, face_witness(f, false), "point_enclosure", missing == 1);  // (else shown above)
+      }
     // Simplices of other dimensions: Del_RM has none above m when it is known completely (a point of M equidistant
     // from m + 2 points never resolves), and when it is pure every lower one is a face of an m-simplex.
     for (Simplex s : given->simplices) {
@@ -1057,42 +1114,49 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
       if (face && static_cast<int>(s.size()) < m + 1) continue;
       ++extra;
       if (!R.covering_certified || unresolved) continue;  // not proven absent
-      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      by_completeness("a simplex of the complex is not in Del_RM(P)");
       rd.add_witness({{"kind", static_cast<int>(s.size()) > m + 1 ? "wrong_dimension" : "not_a_face_of_an_m_simplex"},
                       {"simplex", s},
-                      {"detail", "Del_RM(P) is known completely, has no simplex of dimension above m, and is pure"}});
+                      {"detail", "Del_RM(P) is known completely, has no simplex of dimension above m, and is pure"}},
+                     kShown);
     }
     for (const auto& s : tops) {
       if (found.count(s)) continue;
       ++extra;
       if (!R.covering_certified) continue;  // not proven absent
-      rd.refute("a simplex of the complex is not in Del_RM(P)");
+      by_completeness("a simplex of the complex is not in Del_RM(P)");
       rd.add_witness({{"kind", "not_restricted"}, {"simplex", s},
                       {"detail", "the restricted Voronoi cells of all points were computed completely (check 11) and "
                                  "no point of M is equidistant from these m + 1 points and closer to them than to every "
-                                 "other point"}});
+                                 "other point"}},
+                     kShown);
     }
     rd.claim = {{"kind", "restricted"}, {"meaning", "the complex is the restricted Delaunay complex Del_RM(P)"}};
   }
   const bool known = R.covering_certified && !unresolved;
-  rd.details = {{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
-                {"possibly_impure_faces", unresolved}, {"possibly_impure", impure},
-                {"lower_faces_in_no_m_simplex", R.lower_faces.size()},
-                {"pure", R.covering_certified && !R.lower_faces.empty() ? json(false) : known ? json(true) : json(nullptr)}};
-  if (claimed && given) rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
+  rd.details.update(json{{"m_simplices", R.simplices.size()}, {"cross_check_failures", R.cross_check_failures.size()},
+                         {"possibly_impure_faces", unresolved}, {"possibly_impure", impure},
+                         {"lower_faces_in_no_m_simplex", R.lower_faces.size()},
+                         {"pure", impure_known ? json(false) : known ? json(true) : json(nullptr)}});
+  if (claimed && given) {
+    rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
+    if (R.covering_certified) rd.details["m_simplices_equal_to_the_complex"] = tops_equal;
+  }
   rd.summary = std::to_string(R.simplices.size()) + " m-simplices of Del_RM(P) certified" +
                (R.covering_certified ? " (all of them)" : " (maybe not all)") +
-               (R.covering_certified && !R.lower_faces.empty() ? "; not pure: " + std::to_string(R.lower_faces.size()) +
-                                                                     " simplices of lower dimension in no m-simplex"
+               (tops_equal ? ", exactly the complex's" : "") +
+               (impure_known ? "; Del_RM(P) is not pure, so it triangulates nothing: " + std::to_string(R.lower_faces.size()) +
+                                   " simplices of lower dimension in no m-simplex"
                 : unresolved || !R.lower_faces.empty() ? "; purity not proven" : "") +
-               (claimed && given ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
-                                       " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
-                                 : "");
+               (claimed && given && !tops_equal
+                    ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
+                          " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
+                    : "");
   return rd;
 }
 
 // Check 13: Del_TM(P) = Del_RM(P) on m-simplices, decided either way with witnesses.
-CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R, bool claimed) {
+CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R) {
   CheckEntry eq(CheckId::tangential_equals_restricted);
   std::set<Simplex> tm;
   long unknown_stars = 0;
@@ -1131,14 +1195,12 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
                 {"only_in_restricted", only_rm}, {"only_in_tangential", only_tm}, {"stars_undetermined", unknown_stars}};
   eq.summary = equality(eq.verdict, "Del_TM(P)", "Del_RM(P)") + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
                std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) + " only restricted)";
-  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
 // Check 14: Del_M(P) computed (certify/intrinsic.hpp) and, with --kind intrinsic, compared with
-// the given complex. Not a claim with --kind restricted (REPORT, the decision in details).
-CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::Complex>& given, bool intrinsic_kind,
-                           bool claimed, int m) {
+// the given complex.
+CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::Complex>& given, bool intrinsic_kind, int m) {
   CheckEntry im(CheckId::intrinsic_delaunay);
   im.details = {{"metric", D.metric.empty() ? json(nullptr) : json(D.metric)}};
   if (!D.computed) {
@@ -1197,12 +1259,11 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
                                                 std::to_string(extra) + " not in Del_M"
                                           : "");
   }
-  if (!claimed) report_unclaimed(im);
   return im;
 }
 
 // Check 15: Del_RM(P) = Del_M(P) on m-simplices, decided either way with witnesses.
-CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const IntrinsicDelaunay& D, bool claimed) {
+CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const IntrinsicDelaunay& D) {
   CheckEntry eq(CheckId::restricted_equals_intrinsic);
   long only_rm = 0, only_m = 0;
   std::set<Simplex> rm, im, rejected;
@@ -1242,11 +1303,30 @@ CheckEntry check_restricted_equals_intrinsic(const RestrictedDelaunay* R, const 
   eq.summary = equality(eq.verdict, "Del_RM(P)", "Del_M(P)") + " (" + std::to_string(rm.size()) + " and " + std::to_string(im.size()) + " m-simplices; " +
                std::to_string(only_rm) + " only restricted, " + std::to_string(only_m) + " only intrinsic)";
   if (!D.computed) eq.summary = "not decided: Del_M(P) not computed: " + D.reason;
-  if (!claimed) report_unclaimed(eq);
   return eq;
 }
 
 }  // namespace
+
+bool is_claimed(CheckId id, Mode mode, const io::Claims& claims) {
+  switch (id) {
+    case CheckId::input_sanity: return true;
+    case CheckId::theorem: return false;  // the paper's hypotheses, measured
+    case CheckId::secure_simplices: return claims.secure;
+    default: break;
+  }
+  if (mode == Mode::audit || mode == Mode::tangential) return true;  // the refiner's promise: Del_TM = Del_RM = Del_M
+  switch (id) {  // a complex claimed restricted or intrinsic: that, and the claims file
+    case CheckId::sparsity: return claims.sparsity.has_value();
+    case CheckId::thickness: return claims.gamma0.has_value();
+    case CheckId::power_protection: return claims.power_protection.has_value();
+    case CheckId::star_radius: return claims.star_radius || !claims.star_radius_per_point_file.empty();
+    case CheckId::covering: return claims.covering || !claims.covering_per_point_file.empty();
+    case CheckId::restricted_delaunay: return mode == Mode::restricted;  // its completeness is check 11's argument
+    case CheckId::intrinsic_delaunay: return mode == Mode::intrinsic;
+    default: return false;  // 3, 4, 13, 15: other complexes of P; 8: the spec's expected topology
+  }
+}
 
 Certificate run_certify(const CertifyOptions& o) {
   using clock = std::chrono::steady_clock;
@@ -1348,12 +1428,12 @@ Certificate run_certify(const CertifyOptions& o) {
     watch.record(C, "assemble_checks_3_4_6_10");
   } else {
     const int first = sanity.off_manifold[0];
-    stars_entry = tangent_space_undefined(CheckId::stars, first, false);
-    consistency = tangent_space_undefined(CheckId::consistency, first, false);
-    protection_entry = tangent_space_undefined(CheckId::power_protection, first, claims.power_protection.has_value());
-    radius_entry = tangent_space_undefined(CheckId::star_radius, first, claims.star_radius.has_value() || radius_per_point);
-    secure = tangent_space_undefined(CheckId::secure_simplices, first, claims.secure);
-    theorem = tangent_space_undefined(CheckId::theorem, first, false);
+    stars_entry = tangent_space_undefined(CheckId::stars, first);
+    consistency = tangent_space_undefined(CheckId::consistency, first);
+    protection_entry = tangent_space_undefined(CheckId::power_protection, first);
+    radius_entry = tangent_space_undefined(CheckId::star_radius, first);
+    secure = tangent_space_undefined(CheckId::secure_simplices, first);
+    theorem = tangent_space_undefined(CheckId::theorem, first);
   }
 
   // One face lattice for checks 5 and 8. Simplices with more than m + 1 vertices are refuted by check 3 (wrong
@@ -1386,6 +1466,7 @@ Certificate run_certify(const CertifyOptions& o) {
     RestrictedDelaunayOptions ro;
     ro.threads = threads;
     ro.expected = &K.simplices;
+    ro.distance_to_M = &sanity.distance_to_M;
     // THE GRAPH LEMMA (rvd.cpp) in codimension >= 4 only, where excluding the other sheets box by box
     // (2k searches of a k-dimensional slab) never ends (SO(3)); below, it is as fast and assumes nothing.
     if (spec.reach && N - m >= 4) ro.cell.reach = sqrt_lower(spec.reach->squared);
@@ -1401,12 +1482,26 @@ Certificate run_certify(const CertifyOptions& o) {
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
-    covering = check_covering(*R, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
-    restricted = check_restricted(*R, in.given, restricted_kind, m);
-    equal = on_M ? check_tangential_equals_restricted(*stars, *R, !restricted_kind && !intrinsic_kind)
-                 : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0], false);
+    // COVERAGE (certify/coverage.hpp): every point of M within c of P, or a far point of M refuting
+    // the claim (without one: above c), found and stops the search.
+    watch.record(C, "restricted_delaunay");
+    double target = std::nextafter(R->covering, INFINITY);
+    if (claims.covering) target = exact::enclose(*claims.covering).hi;
+    if (covering_per_point)
+      for (const auto& e : *covering_per_point) target = std::max(target, exact::enclose(e).hi);
+    const CoverageProof coverage = prove_coverage(system, ro.cell.selector, spec.bounding_box,
+                                                  shape.shape ? shape.metric : "", P, grid, *R, target);
+    if (!coverage.proven) R->covering_certified = false, R->reason = coverage.reason;
+    watch.record(C, "coverage");
+    covering = check_covering(*R, coverage, claims.covering, spec, covering_per_point, claims.covering_per_point_file);
+    const RecheckInput recheck{&spec.equations, spec.selector ? &*spec.selector : nullptr, &P};
+    restricted = check_restricted(*R, in.given, restricted_kind, m, recheck);
+    // Del_RM(P) known completely rests on check 11's covering argument, whether or not a covering radius is claimed.
+    restricted->details["assumptions"] = covering->details["assumptions"];
+    equal = on_M ? check_tangential_equals_restricted(*stars, *R)
+                 : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0]);
   }
-  watch.record(C, "restricted_delaunay");
+  watch.record(C, "checks_11_13");
 
   if (on_M) {
     // Checks 7 and 9: the paper's hypotheses, measured; eps is also a sampling radius when check
@@ -1450,8 +1545,8 @@ Certificate run_certify(const CertifyOptions& o) {
         }
     phase("checks 14-15 intrinsic Delaunay");
     const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
-    intrinsic = check_intrinsic(D, in.given, intrinsic_kind, !restricted_kind, m);
-    equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D, !restricted_kind && !intrinsic_kind);
+    intrinsic = check_intrinsic(D, in.given, intrinsic_kind, m);
+    equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D);
   }
   watch.record(C, "intrinsic_delaunay");
   if (o.progress) o.progress->clear();
@@ -1478,6 +1573,20 @@ Certificate run_certify(const CertifyOptions& o) {
   C.checks.push_back(std::move(*equal));
   C.checks.push_back(std::move(*intrinsic));
   C.checks.push_back(std::move(*equal_mi));
+  // The verdict answers what was claimed, and only that: every other check is reported (is_claimed).
+  const Mode mode = !in.given ? Mode::audit : restricted_kind ? Mode::restricted : intrinsic_kind ? Mode::intrinsic : Mode::tangential;
+  for (CheckEntry& e : C.checks) {
+    const bool claim = is_claimed(e.id, mode, claims);
+    // The complex's own claim (12 or 14) is decided, never merely reported: else check 1 alone would certify it.
+    const bool about_the_complex = claim && (mode == Mode::restricted || mode == Mode::intrinsic) &&
+                                   (e.id == CheckId::restricted_delaunay || e.id == CheckId::intrinsic_delaunay);
+    if (about_the_complex && e.verdict == Verdict::report) {
+      e.verdict = Verdict::undecided;
+      e.details["reason"] = "the complex's claim was not decided: " + e.summary;
+    }
+    if (e.verdict != Verdict::report && !claim) report_unclaimed(e);
+    e.claimed = e.verdict != Verdict::report;
+  }
   C.times.emplace_back("total", seconds_since(t_start));
   C.times.emplace_back("total_cpu", double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
   enforce_self_consistency(C);  // a certificate that contradicts itself is an internal error

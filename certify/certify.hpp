@@ -24,6 +24,7 @@
 #include <string>
 
 #include "certify/certificate.hpp"
+#include "io/claims.hpp"
 #include "io/input_error.hpp"
 #include "io/progress.hpp"
 
@@ -36,6 +37,15 @@ class World;
 // What the given complex is claimed to be. automatic: restricted for an OFF file (a surface
 // mesher's output), tangential otherwise. intrinsic: Del_M (check 14 compares).
 enum class ComplexKind { automatic, tangential, restricted, intrinsic };
+
+// What the input claims, by mode: the verdict and the exit status answer exactly that
+// (docs/certificate.md, "What is claimed"). Audit (no complex) and tangential: every check that decides (the
+// refiner's promise Del_TM = Del_RM = Del_M), check 7 with "secure": true. Restricted / intrinsic: check 1, the
+// complex's own check (12: it is Del_RM(P) / 14: it is Del_M(P)) and the checks of the claims present (2 sparsity,
+// 5 gamma0, 6 power_protection, 7 secure, 10 star_radius, 11 covering). Check 9 is never a claim. A check that is no
+// claim is computed and reported: verdict REPORT, its decision in details.decision.
+enum class Mode { audit, tangential, restricted, intrinsic };
+bool is_claimed(CheckId id, Mode mode, const io::Claims& claims);
 
 struct CertifyOptions {
   std::string manifold;  // spec path or builtin:NAME

@@ -5,7 +5,8 @@
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
 //                   [--skip-restricted] [--report REPORT.html] [--halo H]   (MPI runs: docs/design.md §4.11)
 //
-// Prints one line per check and, last, "verdict: CERTIFIED|REFUTED|UNDECIDED".
+// Prints one line per check ([claimed] or [not claimed]), the claims that decided the verdict and, last,
+// "verdict: CERTIFIED|REFUTED|UNDECIDED".
 // Exit status: 0 CERTIFIED, 1 REFUTED, 3 UNDECIDED, 2 bad input or usage (no certificate written).
 #include <CLI/CLI.hpp>
 
@@ -104,11 +105,18 @@ int main(int argc, char** argv) {
     if (!report_path.empty())
       files.emplace_back(report_path, report::format_html_report(cert.to_json(!no_times), o.points, o.complex));
     io::write_files_atomically(files);
-    for (const auto& c : cert.checks)
-      std::printf("check %-2d %-28s %-10s %s\n", c.number(), c.name(), certify::to_string(c.verdict), c.summary.c_str());
+    // Each check says whether it is a claim of this input; a check that is not one is reported (REPORT, its own
+    // decision in parentheses) and never turns the verdict.
+    for (const auto& c : cert.checks) {
+      const std::string decision = c.details.is_object() && c.details.contains("decision")
+                                       ? " (" + c.details["decision"].get<std::string>() + ")" : "";
+      std::printf("check %-2d %-28s %-10s %-13s %s%s\n", c.number(), c.name(), certify::to_string(c.verdict),
+                  c.claimed ? "[claimed]" : "[not claimed]", c.summary.c_str(), decision.c_str());
+    }
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
     if (!report_path.empty()) std::printf("report             %s\n", report_path.c_str());
     certify::Verdict v = cert.overall();
+    std::printf("decided by the claims: %s\n", cert.decided_by().c_str());
     std::printf("verdict: %s\n", certify::to_string(v));
     std::fflush(stdout);
     const int status = v == certify::Verdict::certified ? 0 : v == certify::Verdict::refuted ? 1 : 3;

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 
+#include "certify/certificate.hpp"
 #include "certify/detail/parallel.hpp"
 #include "certify/detail/sphere_hull.hpp"
 #include "exact/interval_arithmetic.hpp"
@@ -76,7 +77,21 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     if (!(radius[p] > 0 && std::isfinite(radius[p]))) radius[p] = grid.diameter();
     // THE GRAPH LEMMA (rvd.cpp) holds out to nearly the reach from p: start inside it when it is used.
     if (o.cell.reach > 0) radius[p] = std::min(radius[p], 0.8 * o.cell.reach);
+    // A point off M: its cell on M is at least d_p away (RestrictedDelaunayOptions::distance_to_M).
+    if (o.distance_to_M && static_cast<std::size_t>(p) < o.distance_to_M->size()) {
+      const double d = (*o.distance_to_M)[p];
+      if (d > radius[p] / 64 && std::isfinite(d)) radius[p] = std::min(r_cap, radius[p] + d);
+    }
   }
+  // A note for a reason about point p when it is off M by more than a 64th of its first radius
+  // (RestrictedDelaunayOptions::distance_to_M): far from M a cell is only found in a larger ball.
+  auto far_from_M = [&, first = radius](int p) -> std::string {
+    if (!o.distance_to_M || p < 0 || static_cast<std::size_t>(p) >= o.distance_to_M->size()) return "";
+    const double d = (*o.distance_to_M)[p];
+    if (!(d > first[p] / 64)) return "";
+    return "; point " + std::to_string(p) + " is up to " + num(d) + " from M (check 1), and its cell on M is at least its "
+           "distance to M away from it";
+  };
   // Boxes per cell: 4 times more, twice at most, for a cell that ran out nearly done (its only
   // undecided boxes are the ones left, under a quarter of its budget). Work only: a cell with
   // boxes undecided otherwise (exact ties, under- or overflow) is not worth a larger budget.
@@ -183,11 +198,20 @@ RestrictedDelaunay compute_restricted_delaunay(const exact::ImplicitSystem& syst
     }
     R.simplices.push_back(std::move(rs));
   }
+  int farthest = 0;  // the point farthest from M (check 1's bounds), for the reasons below
+  if (o.distance_to_M)
+    for (int p = 0; p < n && static_cast<std::size_t>(p) < o.distance_to_M->size(); ++p)
+      if ((*o.distance_to_M)[p] > (*o.distance_to_M)[farthest]) farthest = p;
   if (!R.incomplete_points.empty())
     R.reason = std::to_string(R.incomplete_points.size()) + " cell(s) not complete (first: point " +
-               std::to_string(R.incomplete_points[0]) + ": " + R.cells[R.incomplete_points[0]].reason + ")";
+               std::to_string(R.incomplete_points[0]) + ": " + R.cells[R.incomplete_points[0]].reason +
+               far_from_M(R.incomplete_points[0]) + ")";
   else if (!(R.covering < R.min_radius))
     R.reason = "the covering bound is not below every analysed radius";
+  else if (R.simplices.empty() && faces.empty())
+    R.reason = "no restricted Voronoi vertex or face point was found, so no point of M is known to be within the "
+               "covering bound of P: the covering argument has no anchor" +
+               (far_from_M(farthest).empty() ? std::string() : " (" + far_from_M(farthest).substr(2) + ")");
   else if (!R.cross_check_failures.empty())
     R.reason = std::to_string(R.cross_check_failures.size()) +
                " restricted Voronoi vertex(es) found at one point of their simplex but not at another whose cell is "

@@ -18,9 +18,10 @@
 // no value in (c, min_p r_p), a non-empty interval, and on each connected component of M the
 // image of f is an interval: it lies in [0, c] as soon as the component has one point with
 // f <= c. Every restricted Voronoi vertex found is such a point. So if every component of M holds
-// a restricted Voronoi vertex, P is a c-sample of M: d(x, P) <= c < eps' for every x in M. The
-// certificate states the assumption "every component of M holds one" and checks it against the
-// spec's expected b0 when given (b0 = 1: one vertex suffices); it cannot count components of M.
+// a restricted Voronoi vertex, P is a c-sample of M: d(x, P) <= c < eps' for every x in M. That
+// no component of M is left out is not assumed: certify/coverage.hpp proves it (a verified
+// connected shape, or a search of the spec's bounding box), and run_certify clears
+// covering_certified when it cannot; the spec's expected Betti numbers are never a premise.
 // Under the same conditions, every restricted Voronoi vertex of P lies within c of its points,
 // hence inside the analysed balls: the vertices found are ALL of them, and the purity test of
 // rvd.hpp covers every restricted Voronoi face.
@@ -57,6 +58,10 @@ struct RestrictedDelaunayOptions {
   // ARGUMENT), about the largest circumradius of Del_RM's simplices (within 4% on the built-ins'
   // outputs): first radii are at most 5/4 of it. Too small a ball is only analysed again, larger.
   const std::vector<std::vector<int>>* expected = nullptr;
+  // Work only: a certified upper bound of each point's distance to M (check 1's, SanityResult), or
+  // nullptr. M ∩ Vor(p) lies at least d(p, M) from p, so a ball of radius below it finds nothing
+  // there: a point off M by more than a 64th of its first radius has d_p added to that radius.
+  const std::vector<double>* distance_to_M = nullptr;
   std::function<void(std::size_t, std::size_t)> progress;  // (cells done, cells of the round); for a progress line
 };
 
@@ -87,7 +92,12 @@ struct RestrictedDelaunay {
   double vertex_distance_lower = 0;         // max over `simplices` of distance_lower: <= max_{x in M} d(x, P)
   int rounds_used = 0;
   // The covering argument holds (see above): every cell complete and proven, c < min_p r_p, no
-  // cross-check failure. Then `simplices` are all the m-simplices of Del_RM(P).
+  // cross-check failure, and an ANCHOR: some point of M with d(x, P) <= c is known (a restricted
+  // Voronoi vertex or a face point found). Without one, f = d(., P) may stay above min_p r_p on all
+  // of M (every point of P farther from M than its ball reaches: every cell is then complete and
+  // empty, c = 0), and nothing is known about Del_RM(P). Then `simplices` are all the m-simplices
+  // of Del_RM(P) on the components of M that hold an anchor; run_certify also requires coverage of
+  // all of M (certify/coverage.hpp), and then `simplices` are all the m-simplices of Del_RM(P).
   bool covering_certified = false;
   std::string reason;                       // why not, when not
   long boxes = 0, krawczyk_calls = 0, krawczyk_failures = 0, chart_failures = 0, reach_slabs = 0;

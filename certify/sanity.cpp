@@ -157,13 +157,16 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
   for (std::size_t i = 1; i < n; ++i)
     if (distance[i] > distance[far]) far = i;
   const double maxdist = n ? distance[far] : 0.0;
+  R.distance_to_M = distance;
   e.summary = std::to_string(n) + " distinct points in R^" + std::to_string(N) + ", max |F_i(p)| <= " +
               num(exact::enclose(maxres).hi) + " (tolerance " + exact::rational_to_string(spec.residual_tolerance) +
-              "), every point within " + num(maxdist) + " of M (certified), full-rank Jacobian there";
+              "), every point within " + num(maxdist) + " of M (certified" +
+              (maxdist > 0 ? "; the farthest: point " + std::to_string(far) : std::string()) + "), full-rank Jacobian there";
   if (!R.off_manifold.empty())
     e.summary += "; " + std::to_string(R.off_manifold.size()) + " point(s) off M beyond the tolerance (first: point " +
                  std::to_string(R.off_manifold[0]) +
-                 "), accepted for the restricted Delaunay complex: checks that need T_p M are not computed";
+                 "), accepted for the restricted Delaunay complex: checks that need T_p M are not computed; checks 11-12 look "
+                 "for a point's restricted Voronoi cell out to its distance to M and beyond";
   e.margin = {{"max_residual", {{"certified_upper_bound", num(exact::enclose(maxres).hi)},
                                 {"enclosure", enclosure_json(exact::enclose(maxres))}}},
               {"at_point", n ? json(arg) : json(nullptr)},

@@ -40,6 +40,7 @@ class PointGrid;
 struct SanityResult {
   CheckEntry entry{CheckId::input_sanity};
   std::vector<int> off_manifold;  // sorted indices of the points with a residual above the tolerance
+  std::vector<double> distance_to_M;  // per point, a certified upper bound of its distance to M
 };
 SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet& points, const std::vector<long>& lines,
                                 const std::string& points_file, bool accept_off_manifold, int threads);

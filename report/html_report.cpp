@@ -168,11 +168,15 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
     const int id = c.value("id", 0);
     const nlohmann::json margin = c.contains("margin") ? c["margin"] : nlohmann::json();
     margins[name] = margin;
+    const nlohmann::json& details = c.contains("details") ? c["details"] : nlohmann::json::object();
+    // A check that is not a claim of the input: reported, with its own decision (never the verdict's).
+    const std::string decision = text_of(details, "decision");
+    const std::string not_claimed = c.value("claimed", true) ? std::string()
+                                    : "<br><small>not claimed" + (decision.empty() ? "" : ": " + escape_html(decision)) + "</small>";
     rows += "<tr class=\"verdict-" + escape_html(verdict) + "\"><td>" + std::to_string(id) + "</td><td>" +
-            escape_html(name) + "</td><td class=\"verdict\">" + escape_html(verdict) + "</td><td>" +
+            escape_html(name) + "</td><td class=\"verdict\">" + escape_html(verdict) + not_claimed + "</td><td>" +
             escape_html(text_of(c, "summary")) + "</td><td><code>" +
             escape_html(margin.is_null() ? std::string("—") : margin.dump()) + "</code></td></tr>\n";
-    const nlohmann::json& details = c.contains("details") ? c["details"] : nlohmann::json::object();
     const std::string check_reason = text_of(details, "reason");
     if (!c.contains("witnesses") || !c["witnesses"].is_array()) continue;
     int k = 0;

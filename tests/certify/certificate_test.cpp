@@ -100,6 +100,54 @@ TEST(ConsistencyGuard, UndecidedCheckPrintsOnlyTheBoundsItRegistered) {
   EXPECT_THROW(enforce_self_consistency(C), SelfCheckFailure);
 }
 
+// A check that is not a claim of the input (reported, its decision in details.decision) still
+// prints its bounds as certified when it decided CERTIFIED: the guard holds it to them (a
+// contradiction is an internal error, not a certificate), and to nothing when it decided otherwise.
+TEST(ConsistencyGuard, AReportedCertifiedDecisionIsHeldToItsRequirements) {
+  for (const char* decision : {"CERTIFIED", "REFUTED", "UNDECIDED"}) {
+    CheckEntry e(CheckId::power_protection);
+    e.verdict = Verdict::report;
+    e.claimed = false;
+    e.details["decision"] = decision;
+    e.require_at_least("min_power_margin", -4.32, 0);
+    Certificate C;
+    C.checks.push_back(e);
+    const auto failures = C.self_check_failures();
+    if (std::string(decision) == "CERTIFIED") {
+      ASSERT_EQ(failures.size(), 1u);
+      EXPECT_NE(failures[0].find("CERTIFIED (reported, not claimed) but its certified min_power_margin -4.32 is below 0"),
+                std::string::npos) << failures[0];
+      EXPECT_THROW(enforce_self_consistency(C), SelfCheckFailure);
+    } else {
+      EXPECT_TRUE(failures.empty()) << decision;
+    }
+  }
+}
+
+// The overall verdict and the line before it are about the claimed checks only, the decisive
+// ones first.
+TEST(ClaimedChecks, OverallVerdictAndDecidedByReadOnlyTheClaims) {
+  Certificate C;
+  CheckEntry sanity(CheckId::input_sanity), consistency(CheckId::consistency), restricted(CheckId::restricted_delaunay);
+  consistency.verdict = Verdict::report, consistency.claimed = false, consistency.details["decision"] = "REFUTED";
+  restricted.claim = {{"kind", "restricted"}};
+  C.checks = {sanity, consistency, restricted};
+  EXPECT_EQ(C.overall(), Verdict::certified);
+  EXPECT_EQ(C.decided_by(), "check 1 input_sanity, check 12 restricted_delaunay (the complex is Del_RM(P))");
+  C.checks[2].refute("a simplex of Del_RM(P) is missing from the complex");
+  EXPECT_EQ(C.overall(), Verdict::refuted);
+  EXPECT_EQ(C.decided_by(), "REFUTED check 12 restricted_delaunay (the complex is Del_RM(P)); CERTIFIED check 1 input_sanity");
+  C.checks[2].verdict = Verdict::undecided;
+  EXPECT_EQ(C.overall(), Verdict::undecided);
+  EXPECT_EQ(C.decided_by(), "UNDECIDED check 12 restricted_delaunay (the complex is Del_RM(P)); CERTIFIED check 1 input_sanity");
+  // A check that is not claimed never turns the verdict, whatever its verdict field says.
+  C.checks[2].verdict = Verdict::certified;
+  C.checks[1].verdict = Verdict::refuted;
+  EXPECT_EQ(C.overall(), Verdict::certified);
+  EXPECT_EQ(C.to_json(false)["checks"][1]["claimed"], false);
+  EXPECT_EQ(C.to_json(false)["checks"][2]["claimed"], true);
+}
+
 // Claims as close to the true values as a short rational gets: the octahedron's minimum power
 // margin is exactly 4 and its minimum distance exactly sqrt(2). Claims just below them are
 // CERTIFIED, and the printed bounds must not fall below the claims (the guard would turn the run

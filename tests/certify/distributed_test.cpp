@@ -156,10 +156,14 @@ TEST(Distributed, HaloTooSmallIsUndecidedUnlessWidened) {
   EXPECT_EQ((*stars)["verdict"], "UNDECIDED");
   EXPECT_GT((*stars)["details"]["stars_undetermined"].get<long>(), 0);
   EXPECT_NE((*stars)["details"]["undetermined_examples"].dump().find("halo"), std::string::npos);
-  for (const auto& e : c["checks"])  // check 7's neighbourhoods (5 eps) leave the halo too
+  // Check 7 needs a certified power-protection margin (delta), and with stars left undetermined by
+  // the halo there is none (check 6 gives only the maximum over the determined stars, issue 39): it
+  // is not evaluated, and says why, rather than evaluated on a bound that is not proven.
+  for (const auto& e : c["checks"])
     if (e["name"] == "secure_simplices") {
-      EXPECT_GT(e["details"].value("not_evaluated_halo_too_small", 0L), 0) << e.dump();
       EXPECT_EQ(e["details"]["decision"], "UNDECIDED");
+      EXPECT_NE(e["summary"].get<std::string>().find("not evaluated: no positive power-protection margin"),
+                std::string::npos) << e.dump();
     }
   // A fixed halo wide enough for every search changes nothing.
   o.halo = 10;

@@ -5,8 +5,11 @@
 // clifford-torus-3, torus-of-revolution; so3 has none, see fixtures/manifolds), and huge- and
 // tiny-magnitude variants (the input scaled by 2^k, the spec scaled accordingly), which must
 // still certify. Variants that must keep the verdict: one-ulp moves of points of a valid input.
-// At least 1,000 mutants per run; the tally per kind is printed.
+// At least 1,000 mutants per run; the tally per kind is printed. One more kind runs checks 11-12:
+// a sample of two spheres with one component emptied (EmptiedComponentMutantsAreNeverCertified).
+#include <array>
 #include <map>
+#include <set>
 
 #include "exact/number_types.hpp"
 
@@ -474,6 +477,63 @@ bool registered(const CheckEntry& e, const Pointer& p) {
   return false;
 }
 
+// A sample with one component emptied (issue 39.1): M is two unit spheres 5 apart
+// (fixtures/soundness/components/two-spheres.json), the base samples both (a Fibonacci sample of each,
+// randomly rotated) and certifies covering 1/4 (check 11 CERTIFIED, so the test can fail); the mutant
+// keeps one sphere's points only, and checks 11 and 12 (whose completeness rests on 11) must not be
+// CERTIFIED. The spec's expected b0 = 1 is wrong for M: it must play no part (check 8 only).
+TEST(Mutation, EmptiedComponentMutantsAreNeverCertified) {
+  TempDir dir("mut-components");
+  const std::string claims = dir.file("claims.json");
+  write_text(claims, R"({"format": "delcert-claims v2", "covering": "1/4"})");
+  auto certify = [&](const io::PointSet& P) {
+    CertifyOptions o;
+    o.manifold = fixture("soundness/components/two-spheres.json");
+    o.points = dir.file("points.txt");
+    o.claims = claims;
+    io::write_points(o.points, P);
+    return run_certify(o);
+  };
+  int mutants = 0;
+  const int seeds = test_scale() >= 1 ? 2 : 1;
+  for (int seed = 0; seed < seeds; ++seed) {
+    Rng rng(700 + static_cast<std::uint64_t>(seed));
+    // A random rotation (a unit quaternion) per sphere.
+    auto rotated = [&](double dz) {
+      double a[4], n = 0;
+      for (double& v : a) v = rng.uniform() - 0.5, n += v * v;
+      for (double& v : a) v /= std::sqrt(n);
+      const auto [w, x, y, z] = a;
+      const double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                              {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                              {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+      io::PointSet S = fibonacci_sphere(300), out;
+      out.dimension = 3;
+      for (std::size_t i = 0; i < S.size(); ++i) {
+        std::vector<double> p(3);
+        for (int r = 0; r < 3; ++r) p[r] = R[r][0] * S.point(i)[0] + R[r][1] * S.point(i)[1] + R[r][2] * S.point(i)[2];
+        p[2] += dz;
+        out.push_back(p);
+      }
+      return out;
+    };
+    const io::PointSet first = rotated(0), second = rotated(5);
+    io::PointSet both = first;
+    both.coordinates.insert(both.coordinates.end(), second.coordinates.begin(), second.coordinates.end());
+    const Certificate base = certify(both);
+    ASSERT_EQ(check(base, CheckId::covering).verdict, Verdict::certified) << check(base, CheckId::covering).summary;
+    for (const io::PointSet* kept : {&first, &second}) {
+      const Certificate c = certify(*kept);
+      ++mutants;
+      EXPECT_EQ(check(c, CheckId::covering).verdict, Verdict::refuted) << check(c, CheckId::covering).summary;
+      EXPECT_NE(check(c, CheckId::restricted_delaunay).decision(), Verdict::certified);
+      EXPECT_NE(c.overall(), Verdict::certified);
+    }
+  }
+  std::printf("[ mutants  ] component emptied: %d, none certified\n", mutants);
+  EXPECT_GE(mutants, 2);
+}
+
 TEST(Mutation, CertifiedBoundsUnderUndecidedAreCaughtByTheGuard) {
   std::vector<Certificate> bases;
   {
@@ -538,6 +598,118 @@ TEST(Mutation, CertifiedBoundsUnderUndecidedAreCaughtByTheGuard) {
   EXPECT_GE(total["undecide"], 1);
   EXPECT_GE(total["perturb"], 1);
   EXPECT_GE(total["insert"], 1);
+}
+
+// POINTS PUSHED OFF M (issue 39). A mesher's vertices lie only near M, and Del_RM(P) is defined for
+// any P: a complex claimed restricted must never be CERTIFIED unless it is Del_RM of the points as
+// they are, and never REFUTED when it is. The truth comes from an independent floating-point oracle
+// for the unit sphere (below), and a mutant is used only where the oracle decides with a margin.
+// Base: the Fibonacci sphere and its Del_RM (= Del_TM, from the stars). Kinds: one point or three
+// pushed radially (along the normal) by a factor in [0.7, 1.3] (Del_RM usually changes: a mutant
+// when it does, a variant that must not be REFUTED when it does not), and every point scaled by
+// one factor in [0.7, 1.4] (the cells of a radial sample are cones from the centre: Del_RM stays,
+// so never REFUTED: the reviewed false REFUTED was the mesh scaled by 1.3).
+//
+// The oracle: x on the unit sphere is nearest to exactly a, b, c in P when it lies on the line of
+// points equidistant from them (through their circumcentre, along the normal of their plane) and
+// every other point is farther. Every triple, both intersections, every other point: the set of
+// triangles of Del_RM(P). `decided` is false when some margin is within 1e-9 of a tie.
+struct SphereOracle {
+  std::set<Simplex> triangles;
+  bool decided = true;
+};
+SphereOracle sphere_del_rm(const io::PointSet& P) {
+  SphereOracle o;
+  const int n = static_cast<int>(P.size());
+  auto pt = [&](int i) { return std::array<double, 3>{P.point(i)[0], P.point(i)[1], P.point(i)[2]}; };
+  auto sub = [](auto a, auto b) { return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto dot = [](auto a, auto b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto cross = [](auto a, auto b) {
+    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c) {
+        const auto A = pt(a), u = sub(pt(b), A), v = sub(pt(c), A), w = cross(u, v);
+        const double w2 = dot(w, w);
+        if (w2 < 1e-20) continue;
+        // circumcentre A + (|u|^2 (v x w) + |v|^2 (w x u)) / (2 |w|^2)
+        const auto p1 = cross(v, w), p2 = cross(w, u);
+        std::array<double, 3> C;
+        for (int k = 0; k < 3; ++k) C[k] = A[k] + (dot(u, u) * p1[k] + dot(v, v) * p2[k]) / (2 * w2);
+        // |C + t w|^2 = 1
+        const double qa = w2, qb = 2 * dot(C, w), qc = dot(C, C) - 1, disc = qb * qb - 4 * qa * qc;
+        if (disc < 0) continue;
+        for (double sgn : {-1.0, 1.0}) {
+          const double t = (-qb + sgn * std::sqrt(disc)) / (2 * qa);
+          std::array<double, 3> x;
+          for (int k = 0; k < 3; ++k) x[k] = C[k] + t * w[k];
+          const double r2 = dot(sub(x, A), sub(x, A));
+          double margin = INFINITY;
+          for (int q = 0; q < n && margin > -1e-9; ++q)
+            if (q != a && q != b && q != c) margin = std::min(margin, dot(sub(x, pt(q)), sub(x, pt(q))) - r2);
+          if (std::abs(margin) <= 1e-9) o.decided = false;
+          if (margin > 1e-9) o.triangles.insert({a, b, c});
+        }
+      }
+  return o;
+}
+
+TEST(Mutation, PointsPushedOffMAreNeverCertifiedWrongly) {
+  TempDir dir("mut-off-M");
+  const io::PointSet P0 = fibonacci_sphere(90);
+  const SphereOracle base = sphere_del_rm(P0);
+  ASSERT_TRUE(base.decided);
+  io::Complex K;
+  K.num_vertices = static_cast<int>(P0.size());
+  K.simplices.assign(base.triangles.begin(), base.triangles.end());
+  ASSERT_EQ(as_set(K), as_set(audit("builtin:sphere-2", P0).complex));  // the oracle agrees with the stars
+  CertifyOptions o;
+  o.manifold = "builtin:sphere-2";
+  o.points = dir.file("points.txt");
+  o.complex = dir.file("complex.txt");
+  o.kind = ComplexKind::restricted;
+  io::write_complex(o.complex, K);
+  Rng rng(909);
+  Tally t;
+  int kept = 0, kept_not_refuted = 0;
+  auto factor = [&](double lo, double hi) { return lo + (hi - lo) * rng.below(1000001) / 1e6; };
+  auto try_mutant = [&](const std::string& kind, const io::PointSet& P) {
+    const SphereOracle truth = sphere_del_rm(P);
+    if (!truth.decided) return;
+    io::write_points(o.points, P);
+    const Certificate c = run_certify(o);
+    const CheckEntry& rd = check(c, CheckId::restricted_delaunay);
+    if (truth.triangles != base.triangles) {  // a mutant: the complex is not Del_RM(P)
+      EXPECT_NE(c.overall(), Verdict::certified) << kind << ": CERTIFIED, but the complex is not Del_RM of the moved points";
+      t.by_kind[kind][c.overall() == Verdict::certified ? 0 : c.overall() == Verdict::refuted ? 1 : 2]++;
+    } else {  // the complex is still Del_RM(P): a REFUTED of check 12 would be false (unless "not pure")
+      ++kept;
+      const bool refuted = rd.verdict == Verdict::refuted && rd.details["pure"] != false;
+      EXPECT_FALSE(refuted) << kind << ": REFUTED, but the complex is Del_RM of the moved points: " << rd.summary;
+      kept_not_refuted += !refuted;
+    }
+  };
+  for (int i = 0, rounds = std::max(1, static_cast<int>(scaled(12))); i < rounds; ++i) {
+    for (int moved : {1, 3}) {
+      io::PointSet P = P0;
+      for (int k = 0; k < moved; ++k) {
+        const int p = rng.below(static_cast<int>(P.size()));
+        double f = factor(0.7, 1.3);
+        if (std::abs(f - 1) < 0.02) f = 1.1;
+        for (int v = 0; v < 3; ++v) P.coordinates[p * 3 + v] *= f;
+      }
+      try_mutant(moved == 1 ? "off-M-one" : "off-M-three", P);
+    }
+    io::PointSet P = P0;
+    const double f = factor(0.7, 1.4);
+    for (double& v : P.coordinates) v *= f;
+    try_mutant("off-M-all-scaled", P);
+  }
+  report(t);
+  std::printf("  off-M variants still Del_RM %d, not refuted %d\n", kept, kept_not_refuted);
+  EXPECT_GE(mutants(t), test_scale() >= 1 ? 10 : 1);
+  EXPECT_GE(kept, test_scale() >= 1 ? 10 : 1);  // the all-scaled ones at least
 }
 
 }  // namespace

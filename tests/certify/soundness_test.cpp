@@ -173,5 +173,38 @@ TEST(Soundness, CodimensionNineIsRefusedNamingTheLimit) {
   EXPECT_FALSE(std::filesystem::exists(cert));
 }
 
+
+// Case "off M, x1.3" (issue 39): a gmsh mesh of the unit sphere scaled by 1.3 (every vertex 0.3
+// from M) or 1.2, claimed restricted. Scaling a radial sample of a sphere keeps its Voronoi cells
+// (cones from the centre), so both meshes are Del_RM(P): 1.2 must certify; 1.3 may be CERTIFIED,
+// UNDECIDED or refused, never REFUTED (it was, "820 not in Del_RM", on no witness: every first ball
+// missed M, every cell was complete and empty, and the covering argument "held" with no anchor).
+// Check 1 names the point farthest from M.
+TEST(Soundness, OffManifoldScaledMeshIsNeverRefuted) {
+  for (const std::string scale : {"1.2", "1.3"}) {
+    TempDir dir("sound-off-manifold");
+    const std::string mesh = soundness("off-manifold/sphere-mesh-scaled-" + scale + ".off");
+    const std::string cert = dir.file("cert.json");
+    RunResult r = certify_cmd("--manifold builtin:sphere-2 --points " + mesh + " --complex " + mesh +
+                                  " --kind restricted --residual-tolerance 2 --no-times --out " + q(cert),
+                              dir);
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2 || r.exit_code == 3) << scale << ": " << r.out << r.err;
+    EXPECT_FALSE(has(r.out + r.err, "internal error")) << scale << ": " << r.err;
+    if (scale == "1.2") {
+      EXPECT_EQ(r.exit_code, 0) << r.out;
+    }
+    if (r.exit_code != 0) continue;
+    const auto j = nlohmann::json::parse(read_text(cert));
+    for (const auto& c : j["checks"]) {
+      if (c["id"] == 1) {
+        EXPECT_TRUE(has(c["summary"].get<std::string>(), "the farthest: point")) << c["summary"];
+      }
+      if (c["id"] == 12) {
+        EXPECT_EQ(c["details"]["m_simplices"], 820) << scale;  // all of Del_RM(P): the mesh
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace delcert::certify::test

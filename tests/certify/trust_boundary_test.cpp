@@ -197,8 +197,16 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // decide (the tolerance, the largest residual's candidates), ~25 net: 10576, so 10600. Each MPI
   // rank's part and halo (issue 14): the grid's slab with covers() and cells_for() and their
   // proofs (~110), the driver's widening loop, per-block result slots and the halo's reports
-  // (~80), the two searches' coverage tests (~20): 10784, so 10800.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 10800) << "certify/ should stay small enough to read whole";
+  // (~80), the two searches' coverage tests (~20): 10784, so 10800. main stood at 10898 after issue 39's guard on
+  // UNDECIDED checks' certified bounds; the claims per mode (issue 43: is_claimed, the one pass that reports what is
+  // not claimed, the line naming the deciding claims, the guard on a reported CERTIFIED, ~85 net): 10981. Issue 39
+  // item 2: the independent re-check of check 12's refuting witnesses (restricted_recheck.*, ~230 lines of which ~60
+  // the proof: a REFUTED printed on a witness that does not hold was the defect), the covering argument's anchor and
+  // the balls grown by the distance to M (restricted.*, ~35), check 12's re-checked witnesses and "not pure" wording
+  // (~45): about 11290. Coverage of all of M (issue 39.1): the box search of the bounding box with
+  // the far point's Krawczyk and distance bound, and their proof (coverage.*, ~420), check 11's witness and the
+  // driver (~35 net): about 11750, so 11800.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11800) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }

@@ -76,6 +76,20 @@ TEST_F(HtmlReport, HoldsTheChecksTheWitnessesAndTheLibraries) {
   EXPECT_NE(page.find("MIT License"), std::string::npos);  // three.js's licence travels with it
 }
 
+// A check that is not a claim of the input (issue 43) says so in its row, with its own decision;
+// a claimed check's row does not.
+TEST_F(HtmlReport, ARowSaysWhenItsCheckIsNotClaimed) {
+  nlohmann::json c = certificate();
+  c["verdict"] = "CERTIFIED";
+  c["checks"][1]["verdict"] = "REPORT";
+  c["checks"][1]["claimed"] = false;
+  c["checks"][1]["details"]["decision"] = "REFUTED";
+  c["checks"][0]["claimed"] = true;
+  const std::string page = format_html_report(c, points, &complex);
+  EXPECT_EQ(count(page, "<small>not claimed"), 1u);
+  EXPECT_NE(page.find("REPORT<br><small>not claimed: REFUTED</small>"), std::string::npos);
+}
+
 TEST_F(HtmlReport, CertificateTextCannotBreakOutOfThePage) {
   const std::string page = format_html_report(certificate(), points, &complex);
   // The template's four scripts close; the certificate's "</script>" is escaped in the list (HTML)
