@@ -146,15 +146,7 @@ class Search {
   // point of a non-empty ball query, then every point that can be nearer than it).
   double distance_lower_bound(const Box& X, int& nearest) const {
     const std::vector<double> x0 = centre_of(X);
-    double h = 0;
-    {
-      exact::UpwardRounding up;
-      for (std::size_t i = 0; i < X.size(); ++i) {
-        const double d = std::max(X[i].hi - x0[i], x0[i] - X[i].lo);
-        h += d * d;
-      }
-      h = std::sqrt(h);
-    }
+    const double h = farthest_scaled(X, x0, 1.0);  // the half diagonal about x0, rounded up
     std::vector<int> near;
     for (double R = std::max(2 * h, grid_.spacing()); near.empty(); R *= 2) {
       near = grid_.ball(x0, R);
