@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "certify/detail/grid.hpp"
-#include "certify/intrinsic.hpp"
+#include "certify/intrinsic/intrinsic.hpp"
 #include "io/complex.hpp"
 #include "io/points.hpp"
 #include "io/spec.hpp"

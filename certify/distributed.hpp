@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "certify/star.hpp"
-#include "certify/theorem.hpp"
+#include "certify/tangential/star.hpp"
+#include "certify/tangential/theorem.hpp"
 #include "exact/filter_stats.hpp"
 
 namespace delcert::certify {

@@ -32,7 +32,7 @@ install(TARGETS delcert_exact delcert_io delcert_certify delcert_topology delcer
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/delcert)
 
 # Every header of the three folders. detail/ headers are private (not an API), but some public
-# headers include them (certify/rvd.hpp includes certify/detail/grid.hpp), so they are installed
+# headers include them (certify/restricted/rvd.hpp includes certify/detail/grid.hpp), so they are installed
 # too. tests/install/consumer/ compiles every installed public header on its own.
 foreach(folder exact io certify)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/delcert/${folder}

@@ -18,8 +18,8 @@
 
 #include "certify/certify.hpp"
 #include "certify/detail/grid.hpp"
-#include "certify/intrinsic.hpp"
-#include "certify/star.hpp"
+#include "certify/intrinsic/intrinsic.hpp"
+#include "certify/tangential/star.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/complex.hpp"
 #include "io/points.hpp"
