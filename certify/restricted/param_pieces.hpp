@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "certify/detail/grid.hpp"
+#include "certify/restricted/charts.hpp"
 #include "certify/restricted/param_cell.hpp"
 #include "exact/enclosed_polynomial.hpp"
 #include "exact/interval_arithmetic.hpp"
