@@ -15,6 +15,7 @@
 #include "certify/detail/world.hpp"
 #include "certify/distributed.hpp"
 #include "certify/intrinsic.hpp"
+#include "certify/intrinsic/general.hpp"
 #include "certify/restricted.hpp"
 #include "certify/restricted_recheck.hpp"
 #include "certify/sanity.hpp"
@@ -1456,6 +1457,7 @@ Certificate run_certify(const CertifyOptions& o) {
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal, intrinsic, equal_mi;
   std::optional<RestrictedDelaunay> R;
+  RestrictedCellOptions cell_options;  // check 12's, for the general Del_M engine (checks 14-15)
   const VerifiedShape shape = verify_declared_shape(spec);  // (Del_M below verifies it again: cheap)
   if (o.skip_restricted || m > 3) {
     const std::string why = o.skip_restricted ? "" : "the certified restricted Voronoi diagram is built for m <= 3 (here m = " +
@@ -1481,6 +1483,7 @@ Certificate run_certify(const CertifyOptions& o) {
     phase("checks 11-13 restricted Voronoi cells");
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
+    cell_options = ro.cell;
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
     // COVERAGE (certify/coverage.hpp): every point of M within c of P, or a far point of M refuting
     // the claim (without one: above c), found and stops the search.
@@ -1544,7 +1547,10 @@ Certificate run_certify(const CertifyOptions& o) {
           if (std::adjacent_find(s.begin(), s.end()) == s.end()) candidates.push_back(s);
         }
     phase("checks 14-15 intrinsic Delaunay");
-    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
+    GeneralMetricInput general;
+    general.system = &system, general.distance_to_M = &sanity.distance_to_M, general.cell = cell_options;
+    general.restricted = R ? &*R : nullptr;
+    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads, &general);
     intrinsic = check_intrinsic(D, in.given, intrinsic_kind, m);
     equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D);
   }
