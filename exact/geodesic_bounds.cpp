@@ -10,11 +10,13 @@
 
 #include "exact/detail/cgal_number_types.hpp"
 #include "exact/detail/interval_polynomial.hpp"
+#include "exact/detail/mpfr_value.hpp"
 #include "exact/detail/tangent_impl.hpp"
 
 namespace delcert::exact {
 
 using detail::IA;
+using detail::Mpfr;
 
 namespace {
 
@@ -247,14 +249,6 @@ double curvature_bound(const ImplicitSystem& F, const Box& X) { return Curvature
 // smallest subnormal above 0). Every operation is correctly rounded in the stated direction, and
 // MPFR's rounding does not depend on the FPU's mode.
 namespace {
-
-struct Mpfr {
-  mpfr_t x;
-  explicit Mpfr(mpfr_prec_t p) { mpfr_init2(x, p); }
-  ~Mpfr() { mpfr_clear(x); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-};
 
 // Validates (K, r); false when the answer is +infinity for a non-finite argument.
 bool finite_arguments(double K, double r, const char* who) {
