@@ -16,6 +16,7 @@
 #include "certify/distributed.hpp"
 #include "certify/intrinsic.hpp"
 #include "certify/intrinsic/general.hpp"
+#include "certify/reach_check.hpp"
 #include "certify/restricted.hpp"
 #include "certify/restricted_recheck.hpp"
 #include "certify/sanity.hpp"
@@ -1396,6 +1397,12 @@ Certificate run_certify(const CertifyOptions& o) {
     sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity, threads);
     watch.record(C, "sparsity");
   }
+  // THE DECLARED REACH (certify/reach_check.hpp), an input the graph lemma trusts: two points of M violating
+  // Federer's inequality refute it (check 1), among the pairs a cell's first ball would see (about 4 spacings).
+  if (root && spec.reach)
+    if (const auto w = refute_declared_reach(system, spec.selector ? &*spec.selector : nullptr, P, grid, *spec.reach,
+                                             4 * grid.spacing(), threads))
+      record_reach_refutation(sanity.entry, *w, *spec.reach);
 
   const auto* radius_per_point = claims.star_radius_per_point_file.empty() ? nullptr : &claims.star_radius_per_point;
   const auto* covering_per_point = claims.covering_per_point_file.empty() ? nullptr : &claims.covering_per_point;

@@ -205,8 +205,9 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // the balls grown by the distance to M (restricted.*, ~35), check 12's re-checked witnesses and "not pure" wording
   // (~45): about 11290. Coverage of all of M (issue 39.1): the box search of the bounding box with
   // the far point's Krawczyk and distance bound, and their proof (coverage.*, ~420), check 11's witness and the
-  // driver (~35 net): about 11750, so 11800.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 11800) << "certify/ should stay small enough to read whole";
+  // driver (~35 net): about 11750, so 11800. Issue 40.3, a declared reach refuted by Federer's inequality
+  // (reach_check.*, ~205 lines of which ~60 the proof, the driver's hook 6): about 11955, so 12000.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 12000) << "certify/ should stay small enough to read whole";
 }
 
 TEST(TrustBoundary, IoSourcesRespectTheBoundary) { check_directory("io", kAllowedInIo); }
