@@ -65,7 +65,7 @@ class CellAnalysis {
   CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const detail::PointGrid& grid, int p,
                const RestrictedCellOptions& options)
       : points_(points), grid_(grid), p_(p), opt_(options),
-        chart_(exact::ChartEnclosure::at(system, points.point(p))),
+        chart_(options.chart ? *options.chart : exact::ChartEnclosure::at(system, points.point(p))),
         N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
     if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
     T_enc_ = chart_.tangent_enclosure();

@@ -70,6 +70,7 @@
 #include <vector>
 
 #include "certify/detail/grid.hpp"
+#include "exact/chart.hpp"
 #include "exact/interval.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/points.hpp"
@@ -118,6 +119,10 @@ struct RestrictedCellOptions {
   // incomplete. The vertices and the covering bound mean what they mean without it.
   double window = 0;
   std::function<bool(const exact::Box& U, const exact::Box& H)> window_graph;
+  // The chart to analyse the cell in (implicit charts only), instead of ChartEnclosure::at: any chart
+  // at p whose T and Nn are exactly orthogonal (the statements above need only that and the Gram
+  // bounds); the window's boxes are then in the caller's coordinates. nullptr: the standard chart.
+  const exact::ChartEnclosure* chart = nullptr;
 };
 
 struct RestrictedVoronoiVertex {

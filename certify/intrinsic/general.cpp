@@ -81,7 +81,6 @@ struct GraphBall {
   bool ok = false;
   std::string why;
   std::optional<exact::ChartEnclosure> chart;     // the orthogonal chart above
-  std::optional<exact::ChartEnclosure> standard;  // ChartEnclosure::at (the restricted cells' chart)
   double rho = 0;     // rho_A
   Box UY;             // U_Y
   int n = 1, m = 0;
@@ -162,11 +161,6 @@ struct GraphBall {
     }
     return holds(U, Hb);
   }
-  // The same for a box of the standard chart's coordinates (the window's boxes).
-  bool holds_standard(const Box& U, const Box& Hs, std::span<const double> q) const {
-    Box X;
-    return ok && standard->image(U, Hs, X) && contains(X, q);
-  }
   // d_M(x, q') <= this for every x in X ∩ Y_q (the caller checked contains(X)), rounded up.
   double upper(const Box& X, std::span<const double> q) const {
     double t;
@@ -177,6 +171,162 @@ struct GraphBall {
     return exact::chord_to_geodesic_upper(K, t);
   }
 };
+
+// A FRAME at a point x: Nn a nearly orthonormal normal basis (Eigen's SVD of J_F(x), doubles, exact
+// as they are) and T a nearly orthonormal tangent basis made EXACTLY orthogonal to Nn (T = T0 - Nn
+// (Nn^T Nn)^-1 Nn^T T0, T0 Eigen's doubles). Throws std::domain_error when J_F(x) is rank deficient.
+struct Frame {
+  std::vector<mpq_class> T, Nn;  // N x m, N x k, row-major, exact
+  std::vector<Interval> T_enc, Nn_enc;
+  double gT = 0, GN = INFINITY;  // <= lambda_min(T^T T), >= lambda_max(Nn^T Nn), by Gershgorin
+};
+Frame make_frame(const exact::ImplicitSystem& F, std::span<const double> x) {
+  const int N = F.ambient_dimension(), k = F.codimension(), m = N - k;
+  const Eigen::MatrixXd Jd = F.jacobian(x);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jd, Eigen::ComputeFullV);
+  const Eigen::MatrixXd V = svd.matrixV();  // first k columns: the normal space; last m: ker J
+  if (!V.allFinite() || !(svd.singularValues().minCoeff() > 0)) throw std::domain_error("frame: J_F is rank deficient");
+  std::vector<mpq_class> W(k * N);  // Nn^T, k x N
+  for (int l = 0; l < k; ++l)
+    for (int v = 0; v < N; ++v) W[l * N + v] = V(v, l);
+  // G = [Nn^T Nn | Nn^T T0] (k x (k + m)); after Gauss-Jordan its right block is (Nn^T Nn)^-1 Nn^T T0.
+  std::vector<mpq_class> G(k * (k + m));
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < k; ++j)
+      for (int v = 0; v < N; ++v) G[i * (k + m) + j] += W[i * N + v] * W[j * N + v];
+    for (int a = 0; a < m; ++a)
+      for (int v = 0; v < N; ++v) G[i * (k + m) + k + a] += W[i * N + v] * mpq_class(V(v, k + a));
+  }
+  if (!gauss_jordan(G, k, k + m)) throw std::domain_error("frame: J_F is rank deficient");
+  Frame f;
+  f.T.resize(N * m), f.Nn.resize(N * k);
+  for (int v = 0; v < N; ++v) {
+    for (int l = 0; l < k; ++l) f.Nn[v * k + l] = W[l * N + v];
+    for (int a = 0; a < m; ++a) {
+      mpq_class t = V(v, k + a);
+      for (int l = 0; l < k; ++l) t -= W[l * N + v] * G[l * (k + m) + k + a];
+      f.T[v * m + a] = t;
+    }
+  }
+  for (const auto& q : f.T) f.T_enc.push_back(exact::enclose(q));
+  for (const auto& q : f.Nn) f.Nn_enc.push_back(exact::enclose(q));
+  auto gersh = [&](const std::vector<mpq_class>& A, int d, bool lower) {
+    double best = lower ? INFINITY : 0;
+    for (int i = 0; i < d; ++i) {
+      mpq_class diag = 0, off = 0;
+      for (int j = 0; j < d; ++j) {
+        mpq_class gij = 0;
+        for (int v = 0; v < N; ++v) gij += A[v * d + i] * A[v * d + j];
+        if (i == j) diag = gij; else off += abs(gij);
+      }
+      best = lower ? std::min(best, exact::enclose(diag - off).lo) : std::max(best, exact::enclose(diag + off).hi);
+    }
+    return best;
+  };
+  f.gT = gersh(f.T, m, true), f.GN = gersh(f.Nn, k, false);
+  if (!(f.gT > 0)) throw std::domain_error("frame: the tangent basis is degenerate");
+  return f;
+}
+
+// The orthogonal chart at q (GraphBall): the frame at q. Throws std::domain_error.
+exact::ChartEnclosure orthogonal_chart(const exact::ImplicitSystem& F, std::span<const double> q) {
+  Frame f = make_frame(F, q);
+  return exact::ChartEnclosure(F, q, std::move(f.T), std::move(f.Nn));
+}
+
+// F's second derivatives, prepared once (exact polynomials and their coefficients' enclosures).
+struct Hessians {
+  int N = 0, k = 0;
+  std::vector<exact::Polynomial> d2;        // k x N x N, d2[(e N + v) N + w] = d^2 F_e / dx_v dx_w
+  std::vector<std::vector<IA>> coef;
+  explicit Hessians(const exact::ImplicitSystem& F) : N(F.ambient_dimension()), k(F.codimension()) {
+    for (const auto& P : F.equations())
+      for (int v = 0; v < N; ++v) {
+        const exact::Polynomial dv = P.derivative(v);
+        for (int w = 0; w < N; ++w) d2.push_back(dv.derivative(w));
+      }
+    for (const auto& P : d2) {
+      coef.emplace_back();
+      for (const auto& t : P.terms()) coef.back().push_back(ia(exact::enclose(t.coefficient)));
+    }
+  }
+};
+
+// THE TANGENTIAL CURVATURE BOUND on a box X, in a frame (T, Nn) (T^T Nn = 0 exactly; g_T, G_N its
+// Gram bounds; any frame is valid, one taken at X's centre makes the tilt small). exact::curvature_bound bounds |II(u, u)| by the Hessians' norms in
+// every direction, the normal ones included (twice the truth on a torus of revolution); here only
+// their tangential part counts, up to the tilt. For x in X (J = J_F(x) of rank k) and u a unit
+// tangent vector at x: u = a + n, a = T alpha, n = Nn beta (|a|^2 + |n|^2 = 1). J u = 0 gives
+// (J Nn) beta = -(J T) alpha, so |beta| <= ||J T||_F |alpha| / sigma_min(J Nn), |alpha| <= |a| /
+// sqrt(g_T), and |n| <= sqrt(G_N) |beta| <= tau |a| with tau = sqrt(G_N / g_T) ||J T||_F /
+// sigma_min(J Nn) (sigma_min^2 from gram_eigenvalue_bounds on the k x k matrix J Nn). Then
+//   |u^T H_e u| <= |alpha^T (T^T H_e T) alpha| + 2 |a| |n| ||H_e|| + |n|^2 ||H_e||
+//               <= ||T^T H_e T|| / g_T + (2 tau + tau^2) ||H_e||,
+// ||.|| the largest row sum of absolute values (>= the spectral norm of a symmetric matrix), and
+// |II(u, u)|^2 <= sum_e (u^T H_e u)^2 / lambda_min(J J^T) (exact/geodesic_bounds.hpp's derivation).
+// Every enclosure is an interval evaluation over X under upward rounding; +inf when a bound fails.
+double tangential_curvature(const exact::ImplicitSystem& F, const Hessians& D, const Frame& fr, const Box& X) {
+  const int N = D.N, k = D.k, m = N - k;
+  std::vector<Interval> Jv;
+  if (!exact::jacobian_enclosure(F, X, Jv)) return INFINITY;
+  const double lmin = exact::gram_eigenvalue_bounds(Jv, k, N).lower;
+  if (!(lmin > 0)) return INFINITY;
+  const std::vector<Interval>&T = fr.T_enc, &Nn = fr.Nn_enc;
+  exact::UpwardRounding up;
+  std::vector<IA> xs(N);
+  for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
+  // J T (k x m), J Nn (k x k).
+  IA jt2(0);
+  std::vector<Interval> JN(k * k);
+  for (int e = 0; e < k; ++e) {
+    for (int a = 0; a < m; ++a) {
+      IA s(0);
+      for (int v = 0; v < N; ++v) s += ia(Jv[e * N + v]) * ia(T[v * m + a]);
+      jt2 += exact::square(s);
+    }
+    for (int l = 0; l < k; ++l) {
+      IA s(0);
+      for (int v = 0; v < N; ++v) s += ia(Jv[e * N + v]) * ia(Nn[v * k + l]);
+      JN[e * k + l] = exact::to_interval(s);
+    }
+  }
+  const double smin2 = exact::gram_eigenvalue_bounds(JN, k, k).lower;
+  exact::UpwardRounding up2;  // (gram_eigenvalue_bounds restores the mode it found; to be safe)
+  if (!(smin2 > 0)) return INFINITY;
+  const IA tau = exact::sqrt(IA(fr.GN) / IA(fr.gT) * jt2 / IA(smin2));
+  IA b2(0);
+  std::vector<IA> H(N * N);
+  for (int e = 0; e < k; ++e) {
+    double norm = 0;
+    for (int v = 0; v < N; ++v) {
+      IA row(0);
+      for (int w = 0; w < N; ++w) {
+        const std::size_t i = (static_cast<std::size_t>(e) * N + v) * N + w;
+        H[v * N + w] = D.d2[i].evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t t) { return D.coef[i][t]; });
+        row += IA(std::max(std::abs(H[v * N + w].inf()), std::abs(H[v * N + w].sup())));
+      }
+      norm = std::max(norm, row.sup());
+    }
+    double tnorm = 0;  // T^T H_e T, largest row sum
+    for (int a = 0; a < m; ++a) {
+      IA row(0);
+      for (int c = 0; c < m; ++c) {
+        IA s(0);
+        for (int v = 0; v < N; ++v) {
+          IA hv(0);
+          for (int w = 0; w < N; ++w) hv += H[v * N + w] * ia(T[w * m + c]);
+          s += ia(T[v * m + a]) * hv;
+        }
+        row += IA(std::max(std::abs(s.inf()), std::abs(s.sup())));
+      }
+      tnorm = std::max(tnorm, row.sup());
+    }
+    const IA be = IA(tnorm) / IA(fr.gT) + (IA(2) * tau + exact::square(tau)) * IA(norm);
+    b2 += exact::square(be);
+  }
+  const double K = exact::sqrt(b2 / IA(lmin)).sup();
+  return std::isnan(K) ? INFINITY : K;
+}
 
 // The atlas A at grid size B.n over [-B.rho, B.rho]^m, cells beyond |T u| >= reach left out. False
 // (B.why set) when the cells around u = 0 are not proved, two neighbouring cells of A do not agree,
@@ -280,39 +430,6 @@ double exit_distance2(const GraphBall& B) {
   return low;
 }
 
-// The orthogonal chart at q (GraphBall), or throws std::domain_error.
-exact::ChartEnclosure orthogonal_chart(const exact::ImplicitSystem& F, std::span<const double> q) {
-  const int N = F.ambient_dimension(), k = F.codimension(), m = N - k;
-  const Eigen::MatrixXd Jd = F.jacobian(q);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jd, Eigen::ComputeFullV);
-  // V's first k columns: an orthonormal basis of the normal space, its last m of ker J (doubles). Nn
-  // is the first k (exact doubles, rows of W); T0 the last m, made exactly orthogonal to Nn below.
-  const Eigen::MatrixXd V = svd.matrixV();
-  std::vector<mpq_class> W(k * N);  // k x N
-  for (int l = 0; l < k; ++l)
-    for (int v = 0; v < N; ++v) W[l * N + v] = V(v, l);
-  const std::vector<mpq_class>& J = W;
-  // G = [Nn^T Nn | Nn^T T0] (k x (k + m)); after Gauss-Jordan its right block is (Nn^T Nn)^-1 Nn^T T0.
-  std::vector<mpq_class> G(k * (k + m));
-  for (int i = 0; i < k; ++i) {
-    for (int j = 0; j < k; ++j)
-      for (int v = 0; v < N; ++v) G[i * (k + m) + j] += J[i * N + v] * J[j * N + v];
-    for (int a = 0; a < m; ++a)
-      for (int v = 0; v < N; ++v) G[i * (k + m) + k + a] += J[i * N + v] * mpq_class(V(v, k + a));
-  }
-  if (!V.allFinite() || !gauss_jordan(G, k, k + m)) throw std::domain_error("graph ball: J_F is rank deficient");
-  std::vector<mpq_class> T(N * m), Nn(N * k);
-  for (int v = 0; v < N; ++v) {
-    for (int l = 0; l < k; ++l) Nn[v * k + l] = W[l * N + v];
-    for (int a = 0; a < m; ++a) {
-      mpq_class t = V(v, k + a);
-      for (int l = 0; l < k; ++l) t -= W[l * N + v] * G[l * (k + m) + k + a];
-      T[v * m + a] = t;
-    }
-  }
-  return exact::ChartEnclosure(F, q, std::move(T), std::move(Nn));
-}
-
 // THE GRAPH BALL of q for the radius r. K bounds |II| on A's graph within B(q, R + delta), R =
 // f (c_Y + delta), c_Y >= max |x - q| on Y_q. Why that K serves (general.hpp's open-and-closed
 // argument): a minimizing geodesic from x~ in Y_q to q' of length L < R has every point within L
@@ -320,8 +437,9 @@ exact::ChartEnclosure orthogonal_chart(const exact::ImplicitSystem& F, std::span
 // where it would, at a point over u0, either every cell around u0 is in A (the graphs agree on the
 // faces, h(u0) strictly inside each slab: nearby points of M are on the graph, by uniqueness), or
 // u0 is on a face of A's boundary, where |x - q| >= exit distance >= R + delta (checked).
-GraphBall make_ball(const exact::ImplicitSystem& F, const exact::Polynomial* selector, const io::PointSet& P, int q,
-                    double delta, double r) {
+GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound& curvature, const Hessians& D2,
+                    const exact::Polynomial* selector,
+                    const io::PointSet& P, int q, double delta, double r) {
   GraphBall B;
   B.delta = delta;
   const std::span<const double> x = P.point(q);
@@ -329,7 +447,6 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::Polynomial* sel
   B.m = m;
   try {
     B.chart.emplace(orthogonal_chart(F, x));
-    B.standard.emplace(exact::ChartEnclosure::at(F, x));
     const exact::ChartEnclosure& C = *B.chart;
     const exact::ChartEnclosure::GramBounds g = C.gram_bounds();
     B.gT = g.tangent, B.gN = g.normal;
@@ -401,56 +518,74 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::Polynomial* sel
         cY = std::max(cY, exact::sqrt(IA(B.dist2_upper(U, Hu))).sup());
       }
       const double exit2 = exit_distance2(B);
-      double R, t, reach;
-      {
-        exact::UpwardRounding up;
-        t = (IA(cY) + IA(delta)).sup();
-        R = (IA(1.0625) * IA(t)).sup();
-        reach = (IA(R) + IA(delta)).sup();
-      }
-      if (getenv("GDEBUG")) { int a=0; for (char c : B.in_A) a+=c; fprintf(stderr, "ball %d n=%d A=%d cY=%g reach=%g exit=%g rho=%g rhoY=%g gT=%g\n", q, B.n, a, cY, reach, std::sqrt(exit2), B.rho, rhoY, g.tangent); }
-      if (!(exit2 >= (IA(reach) * IA(reach)).sup())) {
-        B.why = "the graph around the point does not reach far enough for its geodesics";
-        cY_guess = cY;  // the same grid once more, reaching farther
-        continue;
-      }
-      double K = 0;  // on the cells of A within the reach; s > 0 there
+      // K on every cell of A (the geodesics' region is checked against the exit distance below);
+      // s > 0 there.
+      double K = 0;
       bool selected = true;
-      for (std::size_t c = 0; c < B.in_A.size() && selected; ++c) {
+      for (std::size_t c = 0; c < B.in_A.size() && selected && K < INFINITY; ++c) {
         if (!B.in_A[c]) continue;
-        const Box U = B.cell_box(static_cast<int>(c));
-        Box X;
-        {
-          exact::UpwardRounding up;
-          if (B.tangent2_lower(U) >= (IA(reach) * IA(reach)).sup()) continue;  // beyond the geodesics
+        // On sub-boxes of the cell (s per side), each with the contraction of H_c over it (which holds
+        // the cell's points over it): tighter images, a tighter K.
+        const Box Uc = B.cell_box(static_cast<int>(c));
+        const int sides = m <= 2 ? 8 : 4;
+        int subs = 1;
+        for (int a = 0; a < m; ++a) subs *= sides;
+        for (int sub = 0; sub < subs && selected && K < INFINITY; ++sub) {
+          Box U = Uc;
+          for (int a = 0, rest = sub; a < m; ++a, rest /= sides) {
+            const double w = Uc[a].width() / sides, lo = Uc[a].lo + w * (rest % sides);
+            U[a] = Interval{rest % sides == 0 ? Uc[a].lo : lo, rest % sides == sides - 1 ? Uc[a].hi : lo + w};
+          }
+          const exact::ChartResult tight = C.enclose_in(U, B.H[c]);
+          Box X;
+          if (!C.image(U, tight.status == exact::ChartStatus::unique ? tight.H : B.H[c], X)) {
+            K = INFINITY;
+            break;
+          }
+          if (selector) {
+            exact::UpwardRounding up;
+            std::vector<IA> xs(N);
+            for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
+            selected = selector->evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t i) { return coef[i]; }).inf() > 0;
+          }
+          std::vector<double> mid(N);
+          for (int v = 0; v < N; ++v) mid[v] = X[v].midpoint();
+          double Kt = INFINITY;
+          try {
+            Kt = tangential_curvature(F, D2, make_frame(F, mid), X);
+          } catch (const std::domain_error&) {
+          }
+          K = std::max(K, std::min(curvature(X), Kt));
         }
-        if (!C.image(U, B.H[c], X)) {
-          K = INFINITY;
-          break;
-        }
-        if (selector) {
-          exact::UpwardRounding up;
-          std::vector<IA> xs(N);
-          for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
-          selected = selector->evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t i) { return coef[i]; }).inf() > 0;
-        }
-        K = std::max(K, exact::curvature_bound(F, X));
       }
       if (!selected) {
         B.why = "the selector is not proven positive on the graph around the point";
         continue;
       }
-      double KR;
+      // R = Φ_K(c_Y + delta) (1 + 1/64) > Φ_K(c_Y + delta); the geodesics stay in B(q, R + delta).
+      double R, t, reach, KR;
       {
         exact::UpwardRounding up;
+        t = (IA(cY) + IA(delta)).sup();
+      }
+      const double phi = exact::chord_to_geodesic_upper(K, t);
+      {
+        exact::UpwardRounding up;
+        R = (IA(phi) * IA(1.015625)).sup();
+        reach = (IA(R) + IA(delta)).sup();
         KR = (IA(K) * IA(R)).sup();
       }
-      if (getenv("GDEBUG")) fprintf(stderr, "ball %d n=%d cY=%g R=%g K=%g KR=%g exit=%g\n", q, B.n, cY, R, K, KR, std::sqrt(exit2));
-      if (exact::chord_to_geodesic_upper(K, t) < R && KR <= 3.14159) {
-        B.K = K, B.ok = true;
-        return B;
+      if (!(KR <= 3.14159)) {
+        B.why = "the curvature bound around the point is too large for its graph";
+        continue;
       }
-      B.why = "the curvature bound around the point is too large for its graph";
+      if (!(exit2 >= (IA(reach) * IA(reach)).sup())) {
+        B.why = "the graph around the point does not reach far enough for its geodesics";
+        cY_guess = R;  // the same grid once more, reaching farther
+        continue;
+      }
+      B.K = K, B.ok = true;
+      return B;
     }
   } catch (const std::domain_error& e) {
     B.why = e.what();
@@ -564,7 +699,17 @@ class ExistenceProver {
       const double w = std::max(factor * e_est, 1e-12 * (1 + std::abs(uc[0])));
       Box U(m);
       for (int a = 0; a < m; ++a) U[a] = Interval{uc[a] - w, uc[a] + w};
-      const exact::ChartResult ch = C.enclose(U);
+      // The slab: the intersection of the atlas cells' over U (their points over U are the same).
+      std::vector<int> cs;
+      if (!Bp.cells_meeting(U, cs)) return fail(out, "the box around the vertex leaves the graph ball of its point");
+      Box Hi;
+      for (int c : cs) {
+        if (!Bp.in_A[c]) return fail(out, "the box around the vertex leaves the graph ball of its point");
+        if (Hi.empty()) Hi = Bp.H[c];
+        for (std::size_t l = 0; l < Hi.size(); ++l)
+          Hi[l] = Interval{std::max(Hi[l].lo, Bp.H[c][l].lo), std::min(Hi[l].hi, Bp.H[c][l].hi)};
+      }
+      const exact::ChartResult ch = C.enclose_in(U, Hi);
       if (ch.status != exact::ChartStatus::unique) {
         last = "the chart is undecided around the vertex";
         continue;
@@ -757,6 +902,8 @@ IntrinsicDelaunay intrinsic_delaunay_general(const io::ManifoldSpec& spec, const
   if (!R->covering_certified) incomplete = "Del_RM(P) is not known completely (check 11): " + R->reason;
   std::vector<GraphBall> balls(n);
   std::vector<RestrictedCellReport> cells(n);
+  const exact::CurvatureBound curvature(F);
+  const Hessians hessians(F);
   parallel_for(static_cast<std::size_t>(n), threads, [&](std::size_t i, int) {
     const int p = static_cast<int>(i);
     // The ball's radius: beyond the covering bound c_p of p's restricted cell (check 12: M ∩ Vor(p)
@@ -767,10 +914,11 @@ IntrinsicDelaunay intrinsic_delaunay_general(const io::ManifoldSpec& spec, const
       const double cp = i < R->cells.size() ? R->cells[i].covering_bound : R->covering;
       rg = (IA(cp) * IA(1.0625) + IA(delta_max)).sup();
     }
-    balls[i] = make_ball(F, in.cell.selector, points, p, delta[i], rg);
+    balls[i] = make_ball(F, curvature, hessians, in.cell.selector, points, p, delta[i], rg);
     if (!balls[i].ok || !incomplete.empty()) return;
     RestrictedCellOptions o = in.cell;
-    o.shape = nullptr, o.geodesic = false, o.graph_radius = rg, o.window_graph = [&ball = balls[i], x = points.point(p)](const Box& U, const Box& H) { return ball.holds_standard(U, H, x); };
+    o.shape = nullptr, o.geodesic = false, o.graph_radius = rg, o.max_depth = std::min(o.max_depth, 16), o.window_graph = [&ball = balls[i]](const Box& U, const Box& H) { return ball.holds(U, H); };
+    o.chart = &*balls[i].chart;
     {
       exact::UpwardRounding up;
       const IA s = IA(exact::chord_to_geodesic_upper(balls[i].K, (IA(rg) + IA(delta[i])).sup())) - IA(rg) + IA(delta_max);
