@@ -18,6 +18,8 @@
 #include "certify/restricted/restricted.hpp"
 #include "certify/restricted/restricted_recheck.hpp"
 #include "certify/tangential/sanity.hpp"
+#include "certify/intrinsic/general.hpp"
+#include "certify/tangential/reach_check.hpp"
 #include "certify/detail/sha256.hpp"
 #include "certify/tangential/star.hpp"
 #include "certify/tangential/theorem.hpp"
@@ -545,6 +547,12 @@ Certificate run_certify(const CertifyOptions& o) {
     sparsity = check_sparsity(P, grid, claims.sparsity ? &*claims.sparsity : nullptr, ctx_sparsity, threads);
     watch.record(C, "sparsity");
   }
+  // THE DECLARED REACH (certify/reach_check.hpp), an input the graph lemma trusts: two points of M violating
+  // Federer's inequality refute it (check 1), among the pairs a cell's first ball would see (about 4 spacings).
+  if (root && spec.reach)
+    if (const auto w = refute_declared_reach(system, spec.selector ? &*spec.selector : nullptr, P, grid, *spec.reach,
+                                             4 * grid.spacing(), threads))
+      record_reach_refutation(sanity.entry, *w, *spec.reach);
 
   const auto* radius_per_point = claims.star_radius_per_point_file.empty() ? nullptr : &claims.star_radius_per_point;
   const auto* covering_per_point = claims.covering_per_point_file.empty() ? nullptr : &claims.covering_per_point;
@@ -606,6 +614,7 @@ Certificate run_certify(const CertifyOptions& o) {
   // Checks 11-13: the certified restricted Voronoi diagram.
   std::optional<CheckEntry> covering, restricted, equal, intrinsic, equal_mi;
   std::optional<RestrictedDelaunay> R;
+  RestrictedCellOptions cell_options;  // check 12's, for the general Del_M engine (checks 14-15)
   const VerifiedShape shape = verify_declared_shape(spec);  // (Del_M below verifies it again: cheap)
   if (o.skip_restricted || m > 3) {
     const std::string why = o.skip_restricted ? "" : "the certified restricted Voronoi diagram is built for m <= 3 (here m = " +
@@ -631,6 +640,7 @@ Certificate run_certify(const CertifyOptions& o) {
     phase("checks 11-13 restricted Voronoi cells");
     if (o.progress) ro.progress = [&o](std::size_t done, std::size_t total) { o.progress->update(done, total); };
     R = compute_restricted_delaunay(system, P, grid, ro);
+    cell_options = ro.cell;
     if (covering_per_point && R->covering_certified) sharpen_per_point_cells(*R, *covering_per_point, system, P, grid, ro.cell, threads);
     // COVERAGE (certify/coverage.hpp): every point of M within c of P, or a far point of M refuting
     // the claim (without one: above c), found and stops the search.
@@ -694,7 +704,10 @@ Certificate run_certify(const CertifyOptions& o) {
           if (std::adjacent_find(s.begin(), s.end()) == s.end()) candidates.push_back(s);
         }
     phase("checks 14-15 intrinsic Delaunay");
-    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads);
+    GeneralMetricInput general;
+    general.system = &system, general.distance_to_M = &sanity.distance_to_M, general.cell = cell_options;
+    general.restricted = R ? &*R : nullptr;
+    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads, &general);
     intrinsic = check_intrinsic(D, in.given, intrinsic_kind, m);
     equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D);
   }

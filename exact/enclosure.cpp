@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "exact/detail/mpfr_value.hpp"
+
 namespace delcert::exact {
 
 // MPFI rounds every endpoint outward, so each operation below returns an interval containing
@@ -45,13 +47,7 @@ mpfr_prec_t checked_precision(int precision) {
   return static_cast<mpfr_prec_t>(precision);
 }
 
-struct Mpfr {
-  mpfr_t x;
-  explicit Mpfr(mpfr_prec_t p) { mpfr_init2(x, p); }
-  ~Mpfr() { mpfr_clear(x); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-};
+using detail::Mpfr;
 
 std::string format(mpfr_srcptr x, int digits, bool down) {
   char* s = nullptr;

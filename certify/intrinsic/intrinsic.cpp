@@ -8,6 +8,7 @@
 #include "exact/polynomial.hpp"
 
 #include "certify/intrinsic/engines.hpp"
+#include "certify/intrinsic/general.hpp"
 
 namespace delcert::certify {
 
@@ -174,7 +175,8 @@ VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec) {
 
 IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
                                              const detail::PointGrid& grid,
-                                             const std::vector<std::vector<int>>& candidates, int threads) {
+                                             const std::vector<std::vector<int>>& candidates, int threads,
+                                             const GeneralMetricInput* general) {
   const int m = spec.intrinsic_dimension;
   for (const auto& s : candidates) {
     if (static_cast<int>(s.size()) != m + 1) throw std::invalid_argument("an intrinsic candidate is not an m-simplex");
@@ -183,6 +185,7 @@ IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const
         throw std::invalid_argument("an intrinsic candidate is not a sorted set of point indices");
   }
   VerifiedShape V = verify_declared_shape(spec);
+  if (!V.shape && general && m <= 3) return detail::intrinsic_delaunay_general(spec, points, grid, candidates, *general, threads);
   if (!V.shape) {
     IntrinsicDelaunay D;
     D.metric = V.metric, D.reason = V.reason;

@@ -6,8 +6,8 @@
 //   * so3 (SO(3) in R^9, the Frobenius metric): certify/intrinsic_so3.cpp;
 //   * product (any other product of round spheres, m <= 3, e.g. S^2 x S^1): geodesic Voronoi
 //     cells, certify/intrinsic_product.cpp;
-//   * anything else: not computed, with the reason (no closed-form geodesic distance, or a metric
-//     this version does not handle yet).
+//   * anything else, m <= 3: bounds of the geodesic distance (certify/intrinsic/general.hpp), from
+//     check 12's certified Del_RM(P); without those, not computed, with the reason.
 //
 // POINTS NEAR M. d_M(x, p) is defined for x, p in M; the sample's points are doubles, only near
 // M. Convention (stated in the certificate): d_M(x, p) := d_M(x, pi(p)), pi the nearest-point
@@ -81,11 +81,15 @@ struct VerifiedShape {
 };
 VerifiedShape verify_declared_shape(const io::ManifoldSpec& spec);
 
+struct GeneralMetricInput;  // certify/intrinsic/general.hpp
+
 // `candidates`: sorted vertex sets with m + 1 entries (duplicates allowed). Never throws on
 // geometric input; throws std::invalid_argument on a malformed candidate (wrong size, index out
-// of range).
+// of range). Without a verified closed-form metric, `general` (when given, m <= 3) selects the
+// general engine (certify/intrinsic/general.hpp: geodesic distance bounds, no closed form).
 IntrinsicDelaunay compute_intrinsic_delaunay(const io::ManifoldSpec& spec, const io::PointSet& points,
                                              const detail::PointGrid& grid,
-                                             const std::vector<std::vector<int>>& candidates, int threads);
+                                             const std::vector<std::vector<int>>& candidates, int threads,
+                                             const GeneralMetricInput* general = nullptr);
 
 }  // namespace delcert::certify

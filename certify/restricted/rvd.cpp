@@ -65,7 +65,7 @@ class CellAnalysis {
   CellAnalysis(const exact::ImplicitSystem& system, const io::PointSet& points, const detail::PointGrid& grid, int p,
                const RestrictedCellOptions& options)
       : points_(points), grid_(grid), p_(p), opt_(options),
-        chart_(exact::ChartEnclosure::at(system, points.point(p))),
+        chart_(options.chart ? *options.chart : exact::ChartEnclosure::at(system, points.point(p))),
         N_(chart_.ambient_dimension()), m_(chart_.intrinsic_dimension()), k_(chart_.codimension()) {
     if (!(options.graph_radius > 0)) throw std::invalid_argument("restricted cell: graph_radius must be > 0");
     T_enc_ = chart_.tangent_enclosure();
@@ -189,7 +189,7 @@ class CellAnalysis {
       for (int i : *list) {
         const IA s = sign_form(cands_[i], w.U, H);
         if (s.sup() < 0) return true;
-        if (!(s.inf() > 0)) (*list)[out++] = i;
+        if (!(s.inf() > opt_.window)) (*list)[out++] = i;  // THE WINDOW (rvd.hpp): 0 without it
       }
       list->resize(out);
     }
@@ -485,7 +485,8 @@ class CellAnalysis {
     // any box of the second pass (a smaller S has fewer faces for PURITY).
     if (outside_or_closer(w, H)) return discard();
     const int s_size = static_cast<int>(w.S.size()), all = s_size + static_cast<int>(w.far.size());
-    if (all >= 2 && all <= opt_.combined_signs_max && (refining_ || s_size >= m_) && combined_signs(w.S, w.far, w.U, H))
+    if (!(opt_.window > 0) && all >= 2 && all <= opt_.combined_signs_max && (refining_ || s_size >= m_) &&
+        combined_signs(w.S, w.far, w.U, H))
       return discard();
     const IA d2 = dist2(w.U, H);
     const int n = static_cast<int>(w.S.size()) + 1;
@@ -520,6 +521,7 @@ class CellAnalysis {
     }
     std::vector<int> face;
     bool faces_ok = !resolved || n == 1 || faces_known(w.S, face);  // only read for resolved boxes
+    const char* window_fault = resolved && opt_.window > 0 ? window_fault_of(w, H, chart_slab && unique_slab) : nullptr;
     // Second pass (every vertex known): a face in doubt is sought as a FACE POINT, which settles it
     // (and its faces) for good. Work only: a face in doubt only by a loose sign fails every search,
     // so the search waits for boxes of 1/16 the covering width and gives up on a face after kFaceTries.
@@ -532,7 +534,11 @@ class CellAnalysis {
       faces_ok = faces_known(w.S, face);
     }
     const bool purity_floor = widest <= opt_.purity_width * rho_u_;
-    if (resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
+    if (window_fault && (purity_floor || w.depth >= opt_.max_depth)) {
+      undecided(w, box_centre(w.U, H), std::string("window: ") + window_fault);
+      return;
+    }
+    if (!window_fault && resolved && ((fine && (faces_ok || purity_floor)) || w.depth >= opt_.max_depth)) {
       if (bound > report_.covering_bound || report_.covering_location.empty()) {
         report_.covering_bound = bound;
         report_.covering_location = box_centre(w.U, H);
@@ -569,6 +575,19 @@ class CellAnalysis {
       c.unique_slab = unique_slab;
       stack.push_back(std::move(c));
     }
+  }
+
+  // THE WINDOW (rvd.hpp): why the resolved box U x H cannot be kept yet, or nullptr. (a) Its slab is
+  // the chart's, proved unique, and the caller's graph holds U x H; (b) {p} + S(U) lies in a vertex simplex
+  // found here (first pass: only {p} alone passes, the others wait for the second pass anyway).
+  const char* window_fault_of(const Work& w, const Box& H, bool unique_chart_slab) const {
+    if (!unique_chart_slab) return "the box's slab is not the chart's proved graph";
+    if (!opt_.window_graph || !opt_.window_graph(w.U, H)) return "the box leaves the graph of M proved around p";
+    if (w.S.empty()) return nullptr;
+    std::vector<int> K = simplex_of(w.S);
+    for (const RestrictedVoronoiVertex& v : report_.vertices)
+      if (std::includes(v.simplex.begin(), v.simplex.end(), K.begin(), K.end())) return nullptr;
+    return "the points within the window are in no restricted Voronoi vertex's simplex";
   }
 
   // LAGRANGIAN COVERING BOUND. On Vor(p), |x - p|^2 <= g = |x - p|^2 + sum_q lambda_q s_q (all s_q >= 0,

@@ -64,11 +64,13 @@
 // Deterministic: one point, sequential depth-first subdivision; no dependence on thread count.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "certify/detail/grid.hpp"
+#include "exact/chart.hpp"
 #include "exact/interval.hpp"
 #include "exact/tangent_space.hpp"
 #include "io/points.hpp"
@@ -107,6 +109,20 @@ struct RestrictedCellOptions {
   // upper bound of |q - pi(q)| over all points.
   bool geodesic = false;
   double projection_slack = 0;
+  // THE WINDOW (Del_M on a general M, certify/intrinsic/general.cpp; implicit charts only). window
+  // > 0: a candidate q leaves S(U) only when s_q > window on the box (s_q = |x - q|^2 - |x - p|^2):
+  // every point of P outside S(U) + {p} is then farther than p by more than the window, and COMBINED
+  // SIGNS (whose drops are not widened) are off. A kept box must moreover (a) have its chart slab
+  // proved unique and window_graph(U, H) true (the caller's proof that the points of M in U x H lie
+  // on its graph Y_p) and (b) have {p} + S(U) inside a vertex simplex found here; otherwise it is
+  // split, and at the purity width it is an undecided box ("window: ..."), which makes the cell
+  // incomplete. The vertices and the covering bound mean what they mean without it.
+  double window = 0;
+  std::function<bool(const exact::Box& U, const exact::Box& H)> window_graph;
+  // The chart to analyse the cell in (implicit charts only), instead of ChartEnclosure::at: any chart
+  // at p whose T and Nn are exactly orthogonal (the statements above need only that and the Gram
+  // bounds); the window's boxes are then in the caller's coordinates. nullptr: the standard chart.
+  const exact::ChartEnclosure* chart = nullptr;
 };
 
 struct RestrictedVoronoiVertex {
