@@ -80,6 +80,7 @@ std::string round_progress_label(const refine::RefineProgress& p) {
   const char* sep = "; pending ";
   for (refine::Rule rule : refine::kRules)
     if (p.pending[rule]) s += sep + std::to_string(p.pending[rule]) + " " + refine::to_string(rule), sep = ", ";
+  if (p.checking_del_m) s += "; Del_M check (Del_RM and Del_M by the certifier's engines)";
   return s;
 }
 

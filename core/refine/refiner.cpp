@@ -814,6 +814,14 @@ bool Refiner::check_del_m() {
       cells.emplace(cell.begin(), cell.end());
     }
   }
+  if (P_.progress) {
+    RefineProgress pr;
+    pr.round = R_.rounds;
+    pr.points = R_.points.size();
+    pr.inserted = R_.points.size() - R_.input_size;
+    pr.checking_del_m = true;
+    P_.progress(pr);
+  }
   const DelMComparison cmp =
       compare_with_del_m(M_.spec(), R_.points, std::vector<std::vector<int>>(cells.begin(), cells.end()), P_.threads);
   DelMSummary& d = R_.del_m;

@@ -65,6 +65,7 @@ struct RefineProgress {
   std::size_t points = 0;
   std::size_t inserted = 0;
   PerRule<std::size_t> pending{};  // configurations per rule at the start of the round
+  bool checking_del_m = false;      // the Del_M check (rule not_intrinsic) is running: the certifier's engines
 };
 
 struct RefineParameters {
