@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -160,6 +161,24 @@ TEST(RefineDelM, StallNamesTheRuleAndTheSimplexWhenTheRepairCapIsZero) {
   EXPECT_EQ(report.at("stop_reason"), "max_repair_rounds");
   EXPECT_EQ(report.at("stall").at("rule"), "not_intrinsic");
   EXPECT_EQ(report.at("stall").at("simplex"), r.stall->simplex);
+}
+
+// Paper mode has the rule only when asked (--intrinsic-check); its points then come from the paper's
+// picking regions, and the same start ends with Del_TM = Del_RM = Del_M.
+TEST(RefineDelM, PaperModeAppliesTheRuleOnlyWhenAsked) {
+  manifold::Manifold M(io::read_spec(kSpec));
+  RefineParameters p;
+  p.mode = RefineMode::paper;
+  p.threads = 1;
+  const RefineResult plain = refine(M, flip_case(), p);
+  EXPECT_EQ(plain.parameters.intrinsic_check, std::optional<bool>(false));
+  EXPECT_FALSE(plain.del_m.checked);
+  p.intrinsic_check = true;
+  const RefineResult r = refine(M, flip_case(), p);
+  ASSERT_TRUE(r.converged) << (r.stall ? describe_stall(*r.stall) : "");
+  EXPECT_GE(r.rules[Rule::not_intrinsic].inserted, 1u);
+  EXPECT_EQ(r.del_m.breaks, 0u);
+  EXPECT_TRUE(compare_with_del_m(M.spec(), r.points, top_simplices(r.complex, 2), 1).equal());
 }
 
 // A simplex left out of the complex is a break at its restricted Voronoi vertex.
