@@ -228,6 +228,16 @@ class Refiner {
   bool new_star_is_big(std::size_t x);
   std::vector<std::size_t> cosph_affected(std::size_t round_start) const;
   bool check_del_m();
+  void report_progress(const PerRule<std::size_t>& pending, bool checking_del_m) const {
+    if (!P_.progress) return;
+    RefineProgress pr;
+    pr.round = R_.rounds;
+    pr.points = R_.points.size();
+    pr.inserted = R_.points.size() - R_.input_size;
+    pr.pending = pending;
+    pr.checking_del_m = checking_del_m;
+    P_.progress(pr);
+  }
   std::optional<Eigen::VectorXd> produce_not_intrinsic(const Configuration& c, RuleStats& st);
   Stall first_pending() const;
   void measure();
@@ -814,14 +824,7 @@ bool Refiner::check_del_m() {
       cells.emplace(cell.begin(), cell.end());
     }
   }
-  if (P_.progress) {
-    RefineProgress pr;
-    pr.round = R_.rounds;
-    pr.points = R_.points.size();
-    pr.inserted = R_.points.size() - R_.input_size;
-    pr.checking_del_m = true;
-    P_.progress(pr);
-  }
+  report_progress({}, true);
   const DelMComparison cmp =
       compare_with_del_m(M_.spec(), R_.points, std::vector<std::vector<int>>(cells.begin(), cells.end()), P_.threads);
   DelMSummary& d = R_.del_m;
@@ -1000,14 +1003,7 @@ RefineResult Refiner::run() {
       if (!tc_.star(p).closed) ++open_stars_;
     }
     const auto counts = pending();
-    if (P_.progress) {
-      RefineProgress pr;
-      pr.round = R_.rounds;
-      pr.points = R_.points.size();
-      pr.inserted = R_.points.size() - R_.input_size;
-      pr.pending = counts;
-      P_.progress(pr);
-    }
+    report_progress(counts, false);
     const bool big = counts[Rule::big] > 0;
     const bool rule2 = counts[Rule::bad_star] + counts[Rule::bad_cosph] > 0;
     const bool practical_more =

@@ -206,30 +206,29 @@ TEST(CompareWithDelM, AMissingSimplexIsABreakAtItsVoronoiVertex) {
 
 // certifies_whole forgives exactly what the manifold leaves undecidable.
 TEST(CertifiesWhole, ForgivesOnlyWhatTheEnginesCannotComputeOnTheManifold) {
-  using certify::CheckEntry;
   using certify::CheckId;
+  // An entry decided UNDECIDED or REFUTED, with the summary the certifier prints.
+  auto entry = [](CheckId id, bool refuted, const std::string& summary) {
+    certify::CheckEntry e(id);
+    if (refuted)
+      e.refute(summary);
+    else
+      e.undecide(summary);
+    e.summary = summary;
+    return e;
+  };
   certify::Certificate C;
   C.checks.emplace_back(CheckId::input_sanity);
-  CheckEntry im(CheckId::intrinsic_delaunay);
-  im.undecide("no closed-form geodesic distance: the spec declares no metric");
-  im.summary = "not computed: no closed-form geodesic distance: the spec declares no metric";
-  C.checks.push_back(im);
-  CheckEntry eq(CheckId::restricted_equals_intrinsic);
-  eq.undecide("Del_M(P) not computed");
-  eq.summary = "not decided: Del_M(P) not computed: no closed-form geodesic distance";
-  C.checks.push_back(eq);
+  C.checks.push_back(entry(CheckId::intrinsic_delaunay, false,
+                           "not computed: no closed-form geodesic distance: the spec declares no metric"));
+  C.checks.push_back(entry(CheckId::restricted_equals_intrinsic, false,
+                           "not decided: Del_M(P) not computed: no closed-form geodesic distance"));
   WholeVerdict v = certifies_whole(C);
   EXPECT_TRUE(v.certified);
   EXPECT_EQ(v.not_decidable.size(), 2u);
 
-  CheckEntry flip(CheckId::tangential_equals_restricted);
-  flip.refute("a simplex of Del_TM(P) is not in Del_RM(P)");
-  flip.summary = "Del_TM(P) != Del_RM(P)";
-  C.checks.push_back(flip);
-  CheckEntry undecided(CheckId::covering);
-  undecided.undecide("a cell is incomplete");
-  undecided.summary = "not decided: a cell is incomplete";
-  C.checks.push_back(undecided);
+  C.checks.push_back(entry(CheckId::tangential_equals_restricted, true, "Del_TM(P) != Del_RM(P)"));
+  C.checks.push_back(entry(CheckId::covering, false, "not decided: a cell is incomplete"));
   v = certifies_whole(C);
   EXPECT_FALSE(v.certified);
   ASSERT_EQ(v.failing.size(), 2u);
