@@ -20,6 +20,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitInternalError = 3;  // an exception other than io::InputError
 inline constexpr int kExitNotConverged = 4;
+// delcert refine: converged, but the final in-process certification of the output did not certify it whole.
+inline constexpr int kExitNotCertified = 5;
 
 struct Command {
   CLI::App* sub = nullptr;

@@ -5,9 +5,14 @@
 // practical mode) consistent (paper §4, docs/design.md §3.5; see docs/refinement.md for
 // the rules; where ε is too coarse for the local geometry the practical mode shrinks it locally).
 // Writes DIR/points.txt (the input points first, in order), DIR/complex.txt,
-// DIR/report.json and DIR/claims.json. Exit status 0 when converged, 4 when a cap stopped the
-// run (--max-points, default 1000000, or an explicit --max-inserted / --max-rounds; the partial
-// output is written and report.json says "converged": false), 2 on bad input.
+// DIR/report.json and DIR/claims.json. Exit status 0 when converged and (with the Del_M check, on by
+// default in practical mode) the output certifies whole: the written files go through the
+// certifier in-process (certify::run_certify with claims.json) and every claimed check is
+// CERTIFIED, but those the certifier cannot compute on this manifold (refine::certifies_whole).
+// 4 when a cap stopped the run (--max-points, default 1000000, or an explicit --max-inserted /
+// --max-rounds / --max-repair-rounds; the partial output is written, report.json says
+// "converged": false and the summary says which rule stalled where), 5 when it converged but did
+// not certify, 2 on bad input.
 //
 // Defaults (the paper's constants are unusable at any ε one can compute with: H1 asks β >= 2.9
 // and H2 Γ0 < 1/(B+1) < 1e-8):
@@ -41,6 +46,8 @@
 
 #include "core/app/command.hpp"
 #include "core/manifold/manifold.hpp"
+#include "certify/certify.hpp"
+#include "core/refine/intrinsic_repair.hpp"
 #include "core/refine/refine_output.hpp"
 #include "core/refine/refiner.hpp"
 #include "core/sampling/sampling.hpp"
@@ -60,7 +67,9 @@ struct RefineArgs {
   std::uint64_t seed = 1;
   int threads = 0;  // one per hardware thread, as in every command
   std::size_t max_points = refine::kDefaultMaxPoints, max_inserted = 0, max_rounds = 0;
+  std::size_t max_repair_rounds = refine::kDefaultMaxRepairRounds;
   bool no_restricted_check = false, look_ahead = false;
+  bool no_intrinsic_check = false, intrinsic_check = false;  // the second: paper mode only
 };
 
 // "round 12: 3456 points (+456); pending 3 big, 40 inconsistent": the rules with configurations
@@ -71,7 +80,35 @@ std::string round_progress_label(const refine::RefineProgress& p) {
   const char* sep = "; pending ";
   for (refine::Rule rule : refine::kRules)
     if (p.pending[rule]) s += sep + std::to_string(p.pending[rule]) + " " + refine::to_string(rule), sep = ", ";
+  if (p.checking_del_m) s += "; Del_M check (Del_RM and Del_M by the certifier's engines)";
   return s;
+}
+
+// The final certification (with the Del_M check on): the written output through the certifier's
+// checks in-process, with the claims written; true when it certifies whole (refine::certifies_whole).
+bool certify_output(const RefineArgs& a, int threads) {
+  namespace fs = std::filesystem;
+  const auto started = std::chrono::steady_clock::now();
+  certify::CertifyOptions o;
+  o.manifold = a.manifold;
+  o.points = (fs::path(a.out) / "points.txt").string();
+  o.complex = (fs::path(a.out) / "complex.txt").string();
+  o.claims = (fs::path(a.out) / "claims.json").string();
+  o.threads = threads;
+  io::ProgressLine progress = io::ProgressLine::on_stderr();
+  if (progress.terminal()) o.progress = &progress;
+  const certify::Certificate C = certify::run_certify(o);
+  progress.clear();
+  const refine::WholeVerdict v = refine::certifies_whole(C);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::printf("certified          %s (in-process certification of the output with claims.json, %.3f s)\n",
+              v.certified ? "yes" : "NO", seconds);
+  for (const auto& line : v.not_decidable) std::printf("  not decidable    %s\n", line.c_str());
+  for (const auto& line : v.failing) std::printf("  failing          %s\n", line.c_str());
+  if (!v.certified)
+    std::printf("advice             the output did not certify whole (exit status 5): run delcert-certify on it for the "
+                "witnesses\n");
+  return v.certified;
 }
 
 int run_refine(const RefineArgs& a) {
@@ -124,6 +161,13 @@ int run_refine(const RefineArgs& a) {
   params.seed = a.seed;
   params.restricted_check = !a.no_restricted_check;
   params.look_ahead = a.look_ahead;
+  if (a.no_intrinsic_check && a.intrinsic_check)
+    throw io::InputError("delcert refine", 0, "--intrinsic-check and --no-intrinsic-check contradict each other");
+  if (a.intrinsic_check && params.mode != refine::RefineMode::paper)
+    throw io::InputError("delcert refine", 0, "--intrinsic-check is for --mode paper (practical mode has it on by default)");
+  if (a.no_intrinsic_check) params.intrinsic_check = false;
+  if (a.intrinsic_check) params.intrinsic_check = true;
+  params.max_repair_rounds = a.max_repair_rounds;
   params.threads = a.threads;
   params.max_points = a.max_points;
   params.max_inserted = a.max_inserted;
@@ -205,7 +249,13 @@ int run_refine(const RefineArgs& a) {
     std::printf("local eps          down to eps/2^%d near %zu sites (%zu points below eps; report.json: local_eps)\n",
                 result.eps_level, result.eps_sites.size(), below);
   }
+  if (result.del_m.checked)
+    std::printf("Del_M check        %zu repair rounds, %zu places left (%s; %.3f s)\n", result.repair_rounds, result.del_m.breaks,
+                result.del_m.intrinsic_computed ? "Del_TM, Del_RM and Del_M compared"
+                                                : ("Del_M not computed: " + result.del_m.intrinsic_reason).c_str(),
+                result.del_m.seconds);
   std::printf("converged          %s (%s)\n", result.converged ? "yes" : "NO", refine::to_string(result.stop_reason));
+  if (result.stall) std::printf("stalled            %s\n", refine::describe_stall(*result.stall).c_str());
   if (!result.converged) std::printf("advice             %s (exit status 4)\n", refine::advice(result.stop_reason));
   if (params.mode == refine::RefineMode::paper)
     std::printf("assessment         %s\n", refine::paper_mode_assessment(result).c_str());
@@ -223,7 +273,9 @@ int run_refine(const RefineArgs& a) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("time               %.3f s (%.3f s refining) -> %s\n", total, result.total_seconds, a.out.c_str());
   if (!a.mesh_out.empty()) std::printf("mesh               %s\n", a.mesh_out.c_str());
-  return result.converged ? kExitOk : kExitNotConverged;
+  if (!result.converged) return kExitNotConverged;
+  if (!result.parameters.intrinsic_check.value_or(false)) return kExitOk;
+  return certify_output(a, result.parameters.threads) ? kExitOk : kExitNotCertified;
 }
 
 }  // namespace
@@ -274,6 +326,17 @@ Command add_refine_command(CLI::App& app) {
   sub->add_flag("--no-restricted-check", args->no_restricted_check,
                 "practical mode: do not refine the simplices that are not restricted Delaunay with a margin (rule "
                 "not_restricted); faster, but Del_TM may then differ from Del_RM (certifier check 13)");
+  sub->add_flag("--no-intrinsic-check", args->no_intrinsic_check,
+                "practical mode: do not compare the complex with Del_RM and Del_M (rule not_intrinsic) and do not "
+                "certify the output at the end; faster, but certifier checks 13-15 may then fail");
+  sub->add_flag("--intrinsic-check", args->intrinsic_check,
+                "paper mode: also apply rule not_intrinsic (points only inside the paper's picking regions) and "
+                "certify the output at the end");
+  sub->add_option("--max-repair-rounds", args->max_repair_rounds,
+                  "cap on Del_M repair rounds (rule not_intrinsic); exit 4 when the complexes still differ after the "
+                  "last one (0: check once, repair nothing)")
+      ->capture_default_str()
+      ->transform(whole_number("a round count", std::numeric_limits<std::size_t>::max()));
   sub->add_flag("--look-ahead", args->look_ahead,
                 "practical mode: Pick_valid also rejects candidates whose own star would be open, big or Gamma0-bad "
                 "(computed before inserting them; docs/refinement.md, \"Look-ahead\")");

@@ -56,6 +56,10 @@ const char* kPracticalRules[] = {
     "must have a point x of M equidistant from its vertices (Newton from c_p(s)) with every other point farther than "
     "r^2 (1 + 1e-9) + delta0^2 (eps(p)/9)^2: otherwise insert x (if it lies in s's Delaunay ball at p) or Pick_valid "
     "for s at p, so that Del_TM equals the restricted Delaunay complex",
+    "not_intrinsic (unless intrinsic_check is false): once no other rule applies, Del_TM is compared with Del_RM and Del_M "
+    "computed in-process by the certifier's engines (checks 12 and 14); at every m-simplex not proven in all three (or "
+    "undecided place of the restricted engine) insert its restricted Voronoi vertex, else its intrinsic Voronoi vertex, "
+    "projected onto M; then the other rules again, at most max_repair_rounds times",
     "cosph uses the bound delta0^2 max(L(q*s), eps/9)^2 and counts points on or inside the ball: an empty cosph then "
     "implies the claimed delta-check^2 = delta0^2 (eps/9)^2 even where the input is denser than eps/9",
     "Pick_valid rejects candidates closer than eps/9 to a point (the sparsity invariant is enforced, not inferred) and "
@@ -201,7 +205,9 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                      {"max_rounds", cap(p.max_rounds)},
                      {"pick_attempts", p.pick_attempts},
                      {"restricted_check", p.mode == RefineMode::practical && p.restricted_check},
-                     {"look_ahead", p.mode == RefineMode::practical && p.look_ahead}};
+                     {"look_ahead", p.mode == RefineMode::practical && p.look_ahead},
+                     {"intrinsic_check", p.intrinsic_check.value_or(p.mode == RefineMode::practical)},
+                     {"max_repair_rounds", p.max_repair_rounds}};
   {
     const HypothesesReport& h = r.hypotheses;
     json hs = json::array();
@@ -245,6 +251,7 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
   const bool paper = p.mode == RefineMode::paper;
   for (Rule rule : kRules) {
     if (paper && (rule == Rule::unprotected || rule == Rule::inconsistent || rule == Rule::not_restricted)) continue;
+    if (rule == Rule::not_intrinsic && !p.intrinsic_check.value_or(!paper)) continue;
     const RuleStats& s = r.rules[rule];
     rules[to_string(rule)] = {{"inserted", s.inserted},
                               {"applied", s.applied},
@@ -260,6 +267,27 @@ std::string make_report(const RefineResult& r, const OutputContext& c, const Cla
                               {"seconds", s.seconds}};
   }
   j["rules"] = rules;
+  if (r.del_m.checked) {
+    const DelMSummary& d = r.del_m;
+    j["del_m_check"] = {{"statement", "rule not_intrinsic: once no other rule applies, Del_TM is compared with Del_RM and "
+                                      "Del_M computed by the certifier's engines, and a point is inserted where they are not "
+                                      "proven equal (docs/refinement.md, \"Del_M check\")"},
+                        {"repair_rounds", r.repair_rounds},
+                        {"restricted_computed", d.restricted_computed},
+                        {"intrinsic_computed", d.intrinsic_computed},
+                        {"intrinsic_not_computed_because", d.intrinsic_reason},
+                        {"last_check", {{"tangential", d.tangential}, {"restricted", d.restricted},
+                                        {"intrinsic", d.intrinsic}, {"breaks", d.breaks}}},
+                        {"seconds", d.seconds}};
+  }
+  if (r.stall) {
+    j["stall"] = {{"rule", to_string(r.stall->rule)},
+                  {"simplex", r.stall->simplex},
+                  {"point", r.stall->point},
+                  {"location", r.stall->location},
+                  {"what", r.stall->what},
+                  {"message", describe_stall(*r.stall)}};
+  }
   if (!paper) {
     json pr = json::array();
     for (const char* s : kPracticalRules) pr.push_back(s);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -12,6 +13,7 @@
 
 #include "core/refine/cospherical.hpp"
 #include "core/refine/hitting_sets.hpp"
+#include "core/refine/intrinsic_repair.hpp"
 #include "core/refine/picking_region.hpp"
 #include "core/spatial/neighbour_index.hpp"
 #include "core/refine/simplex_measures.hpp"
@@ -35,6 +37,7 @@ const char* to_string(Rule r) {
     case Rule::unprotected: return "unprotected";
     case Rule::inconsistent: return "inconsistent";
     case Rule::not_restricted: return "not_restricted";
+    case Rule::not_intrinsic: return "not_intrinsic";
   }
   return "?";
 }
@@ -47,6 +50,7 @@ const char* to_string(StopReason s) {
     case StopReason::stalled: return "stalled";
     case StopReason::time_limit: return "time_limit";
     case StopReason::max_points: return "max_points";
+    case StopReason::max_repair_rounds: return "max_repair_rounds";
   }
   return "?";
 }
@@ -67,8 +71,33 @@ const char* advice(StopReason s) {
              "not do): try another --seed or a smaller --gamma0, and report it; report.json says what was left pending";
     case StopReason::time_limit:
       return "the time limit was hit (benchmarks only): raise it";
+    case StopReason::max_repair_rounds:
+      return "Del_TM, Del_RM and Del_M were still not proven equal after the last Del_M repair round (rule "
+             "not_intrinsic): raise --max-repair-rounds; report.json's stall says where";
   }
   return "";
+}
+
+std::string describe_stall(const Stall& s) {
+  auto coords = [](const std::vector<double>& x) {
+    std::string t = "(";
+    char buf[32];
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      std::snprintf(buf, sizeof buf, "%.6g", x[i]);
+      t += (i ? ", " : "") + std::string(buf);
+    }
+    return t + ")";
+  };
+  std::string t = std::string("rule ") + to_string(s.rule) + " stalled";
+  if (!s.simplex.empty()) {
+    t += " at simplex [";
+    for (std::size_t i = 0; i < s.simplex.size(); ++i) t += (i ? ", " : "") + std::to_string(s.simplex[i]);
+    t += "]";
+  }
+  if (s.point >= 0) t += " (star of point " + std::to_string(s.point) + ")";
+  if (!s.what.empty()) t += ": " + s.what;
+  if (!s.location.empty()) t += "; location " + coords(s.location);
+  return t;
 }
 
 namespace {
@@ -110,7 +139,10 @@ struct Configuration {
   double radius2 = 0;
   std::vector<double> centre;
   bool open = false;  // practical mode: p's star is open (an unbounded power cell, R = ∞); no cell
-  std::vector<double> target;  // not_restricted: the point of M equidistant from the cell's vertices (empty: none found)
+  std::vector<double> target;  // not_restricted: the point of M equidistant from the cell's vertices (empty: none found);
+                               // not_intrinsic: the point of M where the Del_M check found the complexes differ
+  std::vector<int> simplex;    // not_intrinsic: the simplex (or the candidates of an undecided place) named by the check
+  std::string what;            // not_intrinsic: what is wrong there
 };
 
 bool canonical_less(const Configuration& a, const Configuration& b) {
@@ -138,6 +170,7 @@ class Refiner {
     if (P_.max_inserted == 0) P_.max_inserted = paper_ ? 20 * input.size() + 20000 : kNoCap;
     if (P_.max_rounds == 0) P_.max_rounds = paper_ ? 2000 : kNoCap;
     if (P_.pick_attempts <= 0) P_.pick_attempts = paper_ ? 2000 : 200;
+    if (!P_.intrinsic_check) P_.intrinsic_check = !paper_;
     R_.points = input;
     R_.input_size = input.size();
     rng_.emplace(P_.seed);
@@ -194,6 +227,19 @@ class Refiner {
   bool insert(const Eigen::VectorXd& x, Rule rule);
   bool new_star_is_big(std::size_t x);
   std::vector<std::size_t> cosph_affected(std::size_t round_start) const;
+  bool check_del_m();
+  void report_progress(const PerRule<std::size_t>& pending, bool checking_del_m) const {
+    if (!P_.progress) return;
+    RefineProgress pr;
+    pr.round = R_.rounds;
+    pr.points = R_.points.size();
+    pr.inserted = R_.points.size() - R_.input_size;
+    pr.pending = pending;
+    pr.checking_del_m = checking_del_m;
+    P_.progress(pr);
+  }
+  std::optional<Eigen::VectorXd> produce_not_intrinsic(const Configuration& c, RuleStats& st);
+  Stall first_pending() const;
   void measure();
 
   const manifold::Manifold& M_;
@@ -219,6 +265,8 @@ class Refiner {
   // Practical mode, the not_restricted rule: 0 while it is off (until nothing else applies), then
   // the number of points at the last restricted check of every star.
   std::size_t restricted_full_at_ = 0;
+  // The not_intrinsic rule: the configurations of the last Del_M check, applied in the next round.
+  std::vector<Configuration> intrinsic_configs_;
   // The sizing field (practical mode): sites and the local ε of every point.
   struct Site {
     std::vector<double> x;
@@ -446,6 +494,7 @@ PerRule<std::size_t> Refiner::pending() const {
   for (const auto& v : configs_)
     for (const auto& c : v) ++n[c.rule];
   n[Rule::inconsistent] = inconsistent_.size();
+  n[Rule::not_intrinsic] += intrinsic_configs_.size();
   return n;
 }
 
@@ -460,6 +509,7 @@ bool Refiner::stale(const Configuration& c, std::size_t round_start) const {
 
 std::optional<Eigen::VectorXd> Refiner::produce(const Configuration& c, RuleStats& st) {
   if (c.open) return std::nullopt;  // no cell: shrink() aims at the open direction
+  if (c.rule == Rule::not_intrinsic) return produce_not_intrinsic(c, st);
   if (c.rule == Rule::not_restricted) {
     // The restricted Voronoi vertex itself (Chew's rule on M: it lies in σ's Delaunay ball on M, and
     // near c_p(σ) in σ's tangential one), else a point of σ's picking region as for the other rules.
@@ -760,6 +810,150 @@ std::vector<std::size_t> Refiner::cosph_affected(std::size_t round_start) const 
   return out;
 }
 
+// The Del_M check (rule not_intrinsic; docs/refinement.md, "Del_M check"), run when every other
+// rule is satisfied: Del_TM (the stars' cells; consistent by now) against Del_RM and Del_M from the
+// certifier's engines (compare_with_del_m). Returns true when it made configurations for the next
+// round; false when the run ends here: converged (nothing found), or stopped (the repair cap, or
+// nowhere to insert), with R_.stall the first break.
+bool Refiner::check_del_m() {
+  std::set<std::vector<int>> cells;
+  for (std::size_t p = 0; p < tc_.size(); ++p) {
+    const tangential::Star& st = tc_.star(p);
+    for (std::size_t c = 0; c < st.size(); ++c) {
+      const auto cell = st.cell(c);
+      cells.emplace(cell.begin(), cell.end());
+    }
+  }
+  report_progress({}, true);
+  const DelMComparison cmp =
+      compare_with_del_m(M_.spec(), R_.points, std::vector<std::vector<int>>(cells.begin(), cells.end()), P_.threads);
+  DelMSummary& d = R_.del_m;
+  d.checked = true;
+  d.restricted_computed = cmp.restricted_computed;
+  d.intrinsic_computed = cmp.intrinsic_computed;
+  d.intrinsic_reason = cmp.intrinsic_reason;
+  d.tangential = cmp.tangential, d.restricted = cmp.restricted, d.intrinsic = cmp.intrinsic;
+  d.breaks = cmp.breaks.size();
+  d.seconds += cmp.seconds;
+  if (cmp.equal()) return false;
+  auto stall_of = [&](const DelMBreak& b) {
+    Stall s;
+    s.rule = Rule::not_intrinsic;
+    s.simplex = b.simplex;
+    s.location = b.location;
+    s.what = b.what + " (" + std::to_string(cmp.breaks.size()) + " places in all)";
+    return s;
+  };
+  if (R_.repair_rounds >= P_.max_repair_rounds) {
+    R_.stop_reason = StopReason::max_repair_rounds;
+    R_.stall = stall_of(cmp.breaks.front());
+    return false;
+  }
+  std::vector<Configuration> out;
+  for (const DelMBreak& b : cmp.breaks) {
+    std::vector<double> at = b.location;
+    if (at.empty() && static_cast<int>(b.simplex.size()) == m_ + 1) {
+      // No vertex given (a simplex of Del_TM alone): the point of M equidistant from its vertices
+      // (its restricted Voronoi vertex, whose ball holds another point), from its cell's centre.
+      Eigen::MatrixXd V(N_, m_ + 1);
+      Eigen::VectorXd start = Eigen::VectorXd::Zero(N_);
+      for (int i = 0; i <= m_; ++i) {
+        V.col(i) = Eigen::Map<const Eigen::VectorXd>(R_.points.point(b.simplex[i]).data(), N_);
+        start += V.col(i) / (m_ + 1);
+      }
+      const tangential::Star& st = tc_.star(b.simplex[0]);
+      const long c = st.find(std::span<const int>(b.simplex.data(), b.simplex.size()));
+      if (c >= 0) start = Eigen::Map<const Eigen::VectorXd>(st.centre(c).data(), N_);
+      manifold::NewtonOptions options;
+      if (c >= 0) options.max_distance = 2 * std::sqrt(st.radii2[c]);
+      if (auto x = M_.equidistant_point(V, start, options)) at.assign(x->data(), x->data() + N_);
+      else if (c >= 0) at.assign(start.data(), start.data() + N_);
+    }
+    if (static_cast<int>(at.size()) != N_) continue;
+    // Onto M with the refiner's own projection.
+    auto x = M_.project(at);
+    if (!x || !M_.on_selected_component(manifold::as_span(*x))) continue;
+    std::size_t nn = 0;
+    const double d2 = index_.nearest_distance2(manifold::as_span(*x), &nn);
+    if (!(d2 > 0)) continue;
+    Configuration cf;
+    cf.rule = Rule::not_intrinsic;
+    cf.p = static_cast<int>(nn);
+    for (std::size_t i = 0; i < b.simplex.size() && i < static_cast<std::size_t>(kMaxCell); ++i) cf.cell.v[i] = b.simplex[i];
+    cf.centre.assign(x->data(), x->data() + N_);
+    cf.radius2 = d2;  // the empty ball around x: a point inserted there earlier in the round makes it stale
+    cf.target = cf.centre;
+    cf.simplex = b.simplex;
+    cf.what = b.what;
+    out.push_back(std::move(cf));
+  }
+  if (out.empty()) {
+    R_.stop_reason = StopReason::stalled;
+    R_.stall = stall_of(cmp.breaks.front());
+    R_.stall->what += "; no point of M to insert for any of them";
+    return false;
+  }
+  ++R_.repair_rounds;
+  intrinsic_configs_ = std::move(out);
+  return true;
+}
+
+// The point for a not_intrinsic configuration: its target (on M). In paper mode only inside the
+// paper's picking region: among the cells of star(p), p the nearest point, whose Delaunay ball holds
+// the target, the one where its tangent offset from c_p(σ) is smallest relative to R_p(σ); the
+// target if that offset is at most α R_p(σ), else Pick_valid(σ, p).
+std::optional<Eigen::VectorXd> Refiner::produce_not_intrinsic(const Configuration& c, RuleStats& st) {
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(c.target.data(), N_);
+  if (!(index_.nearest_distance2(manifold::as_span(x)) > 0)) return std::nullopt;
+  if (!paper_) return x;
+  const tangential::Star& star = tc_.star(c.p);
+  if (!star.closed) return std::nullopt;
+  const auto T = planes_.matrix(c.p);
+  long best = -1;
+  double best_ratio = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < star.size(); ++k) {
+    Eigen::Map<const Eigen::VectorXd> centre(star.centre(k).data(), N_);
+    if (!((x - centre).squaredNorm() < star.radii2[k])) continue;
+    const double ratio = (T.transpose() * (x - centre)).norm() / std::sqrt(star.radii2[k]);
+    if (ratio < best_ratio) best_ratio = ratio, best = static_cast<long>(k);
+  }
+  if (best < 0) return std::nullopt;
+  if (best_ratio <= d_.alpha) return x;
+  Configuration pc = c;
+  pc.cell = make_key(star.cell(best));
+  pc.centre.assign(star.centre(best).begin(), star.centre(best).end());
+  pc.radius2 = star.radii2[best];
+  return pick_valid(pc, st);
+}
+
+// The first configuration left, in canonical order (a run stopped by a cap), as a stall.
+Stall Refiner::first_pending() const {
+  std::vector<Configuration> all;
+  for (const auto& v : configs_) all.insert(all.end(), v.begin(), v.end());
+  auto inc = inconsistent_configurations();
+  all.insert(all.end(), inc.begin(), inc.end());
+  all.insert(all.end(), intrinsic_configs_.begin(), intrinsic_configs_.end());
+  Stall s;
+  if (all.empty()) {
+    s.what = "no configuration left";
+    return s;
+  }
+  const Configuration& c = *std::min_element(all.begin(), all.end(), canonical_less);
+  s.rule = c.rule;
+  s.point = c.p;
+  if (c.rule == Rule::not_intrinsic) {
+    s.simplex = c.simplex, s.what = c.what, s.point = -1;
+  } else if (c.open) {
+    s.what = "open star";
+  } else {
+    for (int v : c.cell.v)
+      if (v >= 0) s.simplex.push_back(v);
+    if (c.q >= 0) s.what = "with point " + std::to_string(c.q) + " in cosph";
+  }
+  if (!c.open) s.location = c.centre;
+  return s;
+}
+
 RefineResult Refiner::run() {
   const auto t_start = Clock::now();
   star_options_.threads = P_.threads;
@@ -809,18 +1003,12 @@ RefineResult Refiner::run() {
       if (!tc_.star(p).closed) ++open_stars_;
     }
     const auto counts = pending();
-    if (P_.progress) {
-      RefineProgress pr;
-      pr.round = R_.rounds;
-      pr.points = R_.points.size();
-      pr.inserted = R_.points.size() - R_.input_size;
-      pr.pending = counts;
-      P_.progress(pr);
-    }
+    report_progress(counts, false);
     const bool big = counts[Rule::big] > 0;
     const bool rule2 = counts[Rule::bad_star] + counts[Rule::bad_cosph] > 0;
     const bool practical_more =
-        !paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] + counts[Rule::not_restricted] > 0);
+        (!paper_ && (counts[Rule::unprotected] + counts[Rule::inconsistent] + counts[Rule::not_restricted] > 0)) ||
+        !intrinsic_configs_.empty();
     if (!big && !rule2 && !practical_more) {
       if (!paper_ && P_.restricted_check && open_stars_ == 0 && restricted_full_at_ != R_.points.size()) {
         // Nothing else to do: turn the restricted check on, for every star now and for the stars
@@ -833,7 +1021,13 @@ RefineResult Refiner::run() {
         R_.configuration_seconds += seconds_since(t);
         continue;
       }
-      if (open_stars_ > 0) R_.stop_reason = StopReason::stalled;
+      if (open_stars_ > 0) {
+        R_.stop_reason = StopReason::stalled;
+        break;
+      }
+      // Every other rule is satisfied: the Del_M check (rule not_intrinsic), which either finds
+      // places to repair (the next round inserts there) or ends the run.
+      if (*P_.intrinsic_check && check_del_m()) continue;
       break;
     }
     if (R_.rounds >= P_.max_rounds) {
@@ -863,6 +1057,9 @@ RefineResult Refiner::run() {
         auto inc = inconsistent_configurations();
         batch.insert(batch.end(), std::make_move_iterator(inc.begin()), std::make_move_iterator(inc.end()));
       }
+      batch.insert(batch.end(), std::make_move_iterator(intrinsic_configs_.begin()),
+                   std::make_move_iterator(intrinsic_configs_.end()));
+      intrinsic_configs_.clear();
     }
     std::sort(batch.begin(), batch.end(), canonical_less);
     const std::size_t round_start = R_.points.size();
@@ -884,7 +1081,7 @@ RefineResult Refiner::run() {
       }
       const auto t = Clock::now();
       auto x = produce(c, st);
-      if (!paper_ && (!x || !applies(c, *x))) x = shrink(c, st);
+      if (!paper_ && c.rule != Rule::not_intrinsic && (!x || !applies(c, *x))) x = shrink(c, st);
       bool ok = x && insert(*x, c.rule);
       if (ok)
         ++st.applied;
@@ -927,6 +1124,7 @@ RefineResult Refiner::run() {
     }
   }
   R_.converged = R_.stop_reason == StopReason::converged;
+  if (!R_.converged && !R_.stall) R_.stall = first_pending();
   R_.local_eps = leps_;
   measure();
   R_.parameters = P_;
@@ -949,6 +1147,7 @@ void Refiner::measure() {
   f.inconsistent_simplices = assembly.inconsistent.size();
   f.remaining = pending();
   f.remaining[Rule::inconsistent] = assembly.inconsistent.size();
+  f.remaining[Rule::not_intrinsic] = R_.converged ? 0 : R_.del_m.breaks;
   const int k = m_ + 1;
   f.min_local_eps = leps_.empty() ? d_.eps : *std::min_element(leps_.begin(), leps_.end());
   // The smallest local ε: ε / 2^eps_level (the sites), and the field's minimum under curvature sizing.

@@ -26,12 +26,18 @@ const char* to_string(RefineMode m);
 // not_restricted (practical mode): an m-simplex of the complex whose point of M equidistant from its
 // vertices (its restricted Voronoi vertex) is missing or has another point nearer, so that it is not
 // in the restricted Delaunay complex with a margin (docs/refinement.md, "Restricted check").
-enum class Rule : std::uint8_t { big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4, not_restricted = 5 };
-inline constexpr int kNumRules = 6;
+// not_intrinsic (practical mode by default): once every other rule is satisfied, an m-simplex (or a
+// place) where the certifier's engines do not prove Del_TM = Del_RM = Del_M (docs/refinement.md,
+// "Del_M check"; core/refine/intrinsic_repair.hpp).
+enum class Rule : std::uint8_t {
+  big = 0, bad_star = 1, bad_cosph = 2, unprotected = 3, inconsistent = 4, not_restricted = 5, not_intrinsic = 6
+};
+inline constexpr int kNumRules = 7;
 // Lipschitz slope of the practical mode's local ε (the sizing field; docs/refinement.md).
 inline constexpr double kSizingSlope = 0.5;
 inline constexpr std::array<Rule, kNumRules> kRules = {Rule::big,         Rule::bad_star,     Rule::bad_cosph,
-                                                       Rule::unprotected, Rule::inconsistent, Rule::not_restricted};
+                                                       Rule::unprotected, Rule::inconsistent, Rule::not_restricted,
+                                                       Rule::not_intrinsic};
 const char* to_string(Rule r);
 
 // One T per rule, indexed by the rule.
@@ -43,19 +49,23 @@ struct PerRule {
 };
 
 // Why a run stopped; only `converged` is a success.
-enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit, max_points };
+// max_repair_rounds: the Del_M check still found breaks after max_repair_rounds repair rounds.
+enum class StopReason { converged, max_inserted, max_rounds, stalled, time_limit, max_points, max_repair_rounds };
 const char* to_string(StopReason s);
 // What to do about a run that stopped for `s` (not converged): one sentence for the user.
 const char* advice(StopReason s);
 
 // The default cap on the total number of points (input and inserted).
 inline constexpr std::size_t kDefaultMaxPoints = 1000000;
+// The default cap on Del_M repair rounds (rule not_intrinsic).
+inline constexpr std::size_t kDefaultMaxRepairRounds = 20;
 
 struct RefineProgress {
   std::size_t round = 0;
   std::size_t points = 0;
   std::size_t inserted = 0;
   PerRule<std::size_t> pending{};  // configurations per rule at the start of the round
+  bool checking_del_m = false;      // the Del_M check (rule not_intrinsic) is running: the certifier's engines
 };
 
 struct RefineParameters {
@@ -69,6 +79,16 @@ struct RefineParameters {
   // Practical mode: once no other rule applies, also refine the m-simplices that are not restricted
   // Delaunay with a margin (Rule::not_restricted), so that the output's Del_TM equals its Del_RM.
   bool restricted_check = true;
+  // Rule not_intrinsic: once every other rule is satisfied, compare the complex with Del_RM and Del_M
+  // computed by the certifier's engines (core/refine/intrinsic_repair.hpp) and insert points where
+  // they differ, until they are proven equal (as far as the engines decide). nullopt: on in
+  // practical mode, off in paper mode (Algorithm 1 has no such rule). RefineResult::parameters
+  // holds it resolved.
+  std::optional<bool> intrinsic_check;
+  // The rule's cap: at most this many repair rounds (Del_M checks that found something to repair,
+  // each followed by the other rules); the check after the last one must find nothing, else the run
+  // stops with StopReason::max_repair_rounds. 0: no repair at all (the check runs once).
+  std::size_t max_repair_rounds = kDefaultMaxRepairRounds;
   // Practical mode: Pick_valid also rejects a candidate whose own star, computed before inserting
   // it (tangential::tentative_star), would be open, hold a cell with R >= ε(x) or a Γ0-bad cell
   // (docs/refinement.md, "Look-ahead"). Off by default: see there for what it measured.
@@ -133,6 +153,28 @@ struct FinalMeasures {
   double min_local_eps = 0;                   // min over points of ε(p) at the end
 };
 
+// Where a run that did not converge stopped: the first configuration left (in canonical order) or,
+// for the Del_M check, the first break it found. For the stall message (describe_stall).
+struct Stall {
+  Rule rule = Rule::big;
+  std::vector<int> simplex;      // the cell (sorted), or the simplex the Del_M check named; may be empty
+  int point = -1;                // the star it is in (the nearest point for not_intrinsic), or -1
+  std::vector<double> location;  // c_p(σ), or where the Del_M check found it breaks; may be empty
+  std::string what;              // what is wrong, in words
+};
+// "rule not_intrinsic stalled at simplex [3, 17, 52, 90] (in Del_RM, Del_M, not in Del_TM), location (0.12, ...)".
+std::string describe_stall(const Stall& s);
+
+// The last Del_M check (rule not_intrinsic).
+struct DelMSummary {
+  bool checked = false;
+  bool restricted_computed = false, intrinsic_computed = false;
+  std::string intrinsic_reason;  // why Del_M was not computed (the rule then compares Del_TM with Del_RM only)
+  std::size_t tangential = 0, restricted = 0, intrinsic = 0;  // m-simplices
+  std::size_t breaks = 0;        // where the complexes were not proven equal (0 at convergence)
+  double seconds = 0;            // all checks together
+};
+
 struct RefineResult {
   io::PointSet points;           // the input points first, in their order, then the inserted ones
   std::size_t input_size = 0;
@@ -144,6 +186,9 @@ struct RefineResult {
   std::size_t rounds = 0;
   PerRule<RuleStats> rules{};
   std::vector<SparsityViolation> sparsity_violations;
+  std::size_t repair_rounds = 0;  // Del_M checks that found something to repair (rule not_intrinsic)
+  DelMSummary del_m;
+  std::optional<Stall> stall;     // set when the run did not converge
   // Local ε (practical mode; docs/refinement.md, "Local ε"): where a configuration could not be
   // applied at the local ε, a site (point, ε / 2^level) was added to the sizing field
   // ε(x) = min(ε, min over sites of ε_site + kSizingSlope |x - site|). eps_level is the largest

@@ -3,8 +3,10 @@
 // Del_TM(P) = Del_RM(P) CERTIFIED (check 13: the practical mode's not_restricted rule refines until
 // the two agree; when the restricted checks are skipped it is not computed); Del_M (check 14)
 // CERTIFIED where the spec has a usable closed-form metric, else "not computed", and
-// Del_RM(P) = Del_M(P) (check 15) decided whenever Del_M is. The refiner does not promise Del_RM =
-// Del_M, so REFUTED is accepted there, but only with witnesses that re-check here, independently
+// Del_RM(P) = Del_M(P) (check 15) decided whenever Del_M is. The refiner promises Del_RM = Del_M only
+// with its Del_M check on (rule not_intrinsic, the default in practical mode, which `delcert refine`
+// then certifies itself: tests/core/refine/intrinsic_repair_test.cpp); here REFUTED is accepted,
+// but only with witnesses that re-check here, independently
 // of the certifier: a restricted Voronoi vertex enclosure is a box at which every other point of P
 // is strictly farther than the simplex's points (interval bounds of the squared distances over the
 // box, in long double with a relative margin far above its rounding).

@@ -334,6 +334,15 @@ TEST(Refiner, CapsStopTheRunAndSaySo) {
   EXPECT_FALSE(r2.converged);
   EXPECT_EQ(r2.stop_reason, StopReason::max_rounds);
   EXPECT_EQ(r2.rounds, 1u);
+  // Which rule stalled where: the first configuration left, in canonical order (rule big first).
+  ASSERT_TRUE(r2.stall.has_value());
+  EXPECT_EQ(r2.stall->rule, Rule::big);
+  EXPECT_GE(r2.stall->point, 0);
+  EXPECT_EQ(r2.stall->simplex.size(), 3u);
+  EXPECT_EQ(r2.stall->location.size(), 3u);
+  EXPECT_EQ(describe_stall(*r2.stall).rfind("rule big stalled at simplex [", 0), 0u) << describe_stall(*r2.stall);
+  ASSERT_TRUE(r.stall.has_value());  // the max_inserted stop too
+  EXPECT_FALSE(r.stall->simplex.empty() && r.stall->what.empty());
 }
 
 // Issue 15 item 1: at ε = 2 on the torus of revolution (R = 2, r = 1) the first rounds stalled
