@@ -707,7 +707,7 @@ Certificate run_certify(const CertifyOptions& o) {
     GeneralMetricInput general;
     general.system = &system, general.distance_to_M = &sanity.distance_to_M, general.cell = cell_options;
     general.restricted = R ? &*R : nullptr;
-    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads, &general);
+    const IntrinsicDelaunay D = compute_intrinsic_delaunay(spec, P, grid, candidates, threads, o.general_del_m ? &general : nullptr);
     intrinsic = check_intrinsic(D, in.given, intrinsic_kind, m);
     equal_mi = check_restricted_equals_intrinsic(R ? &*R : nullptr, D);
   }

@@ -58,6 +58,10 @@ struct CertifyOptions {
   // Checks 11-15 are not computed (their entries say so, verdict REPORT): the certificate is then
   // about Del_TM(P) only. Not allowed with kind restricted or intrinsic.
   bool skip_restricted = false;
+  // Checks 14-15 on a manifold without a closed-form metric: the general engine
+  // (certify/intrinsic/general.hpp). false: Del_M not computed there (the refiner's own final check
+  // does so: its repair rule does not use the general engine yet, docs/refinement.md).
+  bool general_del_m = true;
   int threads = 1;
   // Every exact/ predicate skips its interval filter and decides exactly (and check 7 decides
   // every cell in exact rationals). For differential tests: the certificate must be the same

@@ -90,6 +90,7 @@ bool certify_output(const RefineArgs& a, int threads) {
   namespace fs = std::filesystem;
   const auto started = std::chrono::steady_clock::now();
   certify::CertifyOptions o;
+  o.general_del_m = false;  // the repair rule does not use the general Del_M engine yet (docs/refinement.md)
   o.manifold = a.manifold;
   o.points = (fs::path(a.out) / "points.txt").string();
   o.complex = (fs::path(a.out) / "complex.txt").string();

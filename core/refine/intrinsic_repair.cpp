@@ -11,8 +11,8 @@
 // The certifier's engines (certify/ is being split into subfolders: these paths follow it at merge).
 #include "certify/certificate.hpp"
 #include "certify/detail/grid.hpp"
-#include "certify/intrinsic.hpp"
-#include "certify/restricted.hpp"
+#include "certify/intrinsic/intrinsic.hpp"
+#include "certify/restricted/restricted.hpp"
 #include "exact/tangent_space.hpp"
 
 namespace delcert::refine {
