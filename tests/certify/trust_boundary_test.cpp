@@ -209,8 +209,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // driver (~35 net): about 11750, so 11800.
   // Issue 40 arranged certify/ in sub-folders by what it recomputes (tangential/, restricted/, intrinsic/, detail/)
   // and split the files of 800 lines or more: no code added, but each new file's header comment, includes and
-  // declarations (~400 lines): 12141, so 12200.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 12200) << "certify/ should stay small enough to read whole";
+  // declarations (~400 lines): 12141, so 12200. Issue 40 then added Del_M on a general M (intrinsic/general.*,
+  // intrinsic/graph_ball.*: the graph balls, the degree argument, ~1060 lines of which ~250 the proofs; the window
+  // in rvd.*, ~35) and the declared reach refuted by Federer's inequality (tangential/reach_check.*, ~205): 13524,
+  // so 13600.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 13600) << "certify/ should stay small enough to read whole";
 }
 
 // One concept per file, each readable at a sitting (issue 40): no source of certify/ or exact/ has 800 lines or
