@@ -25,6 +25,8 @@
 
 namespace delcert::test {
 
+inline std::string json_null_string() { return ""; }
+
 // Smallest and largest squared distance from q to the box.
 inline std::pair<long double, long double> box_distance2(const std::vector<std::pair<long double, long double>>& box,
                                                          std::span<const double> q) {
@@ -39,6 +41,14 @@ inline std::pair<long double, long double> box_distance2(const std::vector<std::
 }
 
 inline void expect_refined_certificate(const nlohmann::json& certificate, const io::PointSet& P) {
+  // Del_M on a manifold without a closed-form metric (the general engine, certify/intrinsic/general.hpp):
+  // the refiner's repair rule does not use that engine yet (docs/refinement.md), so checks 14-15 may stay
+  // UNDECIDED on its output there; what they certify is still required to hold (never REFUTED).
+  bool general = false;
+  for (const auto& check : certificate.at("checks"))
+    if (check.at("name") == "intrinsic_delaunay" && check.contains("details") &&
+        check.at("details").value("metric", json_null_string()) == "general")
+      general = true;
   for (const auto& check : certificate.at("checks")) {
     const std::string name = check.at("name"), verdict = check.at("verdict");
     if (verdict == "REPORT") continue;
@@ -46,6 +56,7 @@ inline void expect_refined_certificate(const nlohmann::json& certificate, const 
     const bool no_metric = verdict == "UNDECIDED" && (summary.find("no closed-form geodesic distance") != std::string::npos ||
                                                       summary.find("not built") != std::string::npos);
     if (name == "intrinsic_delaunay" && no_metric) continue;
+    if (general && verdict == "UNDECIDED" && (name == "intrinsic_delaunay" || name == "restricted_equals_intrinsic")) continue;
     if (name == "restricted_equals_intrinsic" && verdict == "UNDECIDED" &&
         summary.find("Del_M(P) not computed") != std::string::npos)
       continue;
