@@ -176,6 +176,7 @@ class ExistenceProver {
       // Emptiness: every other point certainly farther in d_M than every point of sigma, on all of X.
       double ub = 0;
       for (int i : sigma) ub = std::max(ub, balls_[i].upper(X, P_.point(i)));
+      if (!std::isfinite(ub)) return fail(out, "the geodesic distance to the simplex's points is not bounded there");
       std::vector<double> centre(N);
       double rad;
       {
@@ -252,6 +253,7 @@ class ExistenceProver {
       exact::UpwardRounding up;
       tsup = distance(X, P_.point(j)).sup();
       const double phi = exact::chord_to_geodesic_upper(balls_[j].K, (IA(tsup) + IA(balls_[j].delta)).sup());
+      if (!std::isfinite(phi) || !std::isfinite(tsup)) return static_cast<double>(INFINITY);
       return (exact::square(IA(phi)) - exact::square(IA(tsup))).sup();
     };
     double tp;
@@ -261,6 +263,10 @@ class ExistenceProver {
       double ti;
       const double gi = g(i, ti);
       exact::UpwardRounding up;
+      if (!std::isfinite(gi) || !std::isfinite(gp)) {
+        e.push_back(INFINITY);
+        continue;
+      }
       const IA cross = IA(2) * std::max((IA(ti) * IA(balls_[i].delta)).sup(), (IA(tp) * IA(balls_[p].delta)).sup());
       e.push_back((IA(gi) + IA(gp) + cross).sup());
     }
@@ -291,6 +297,9 @@ class ExistenceProver {
     for (int j = 0; j < m; ++j) {
       exact::UpwardRounding up;
       IA bound(0);
+      bool finite = true;
+      for (int i = 0; i < m; ++i) finite &= std::isfinite(e[i]);
+      if (!finite) return false;
       for (int i = 0; i < m; ++i) bound += IA(std::abs(Binv(j, i))) * IA(e[i]);
       const IA v = eval_row(brows[j], face, Hf);
       if (v.inf() > bound.sup() || v.sup() < -bound.sup()) return true;
@@ -362,7 +371,12 @@ IntrinsicDelaunay intrinsic_delaunay_general(const io::ManifoldSpec& spec, const
     o.chart = &*balls[i].chart;
     {
       exact::UpwardRounding up;
-      const IA s = IA(exact::chord_to_geodesic_upper(balls[i].K, (IA(rg) + IA(delta[i])).sup())) - IA(rg) + IA(delta_max);
+      const double phi = exact::chord_to_geodesic_upper(balls[i].K, (IA(rg) + IA(delta[i])).sup());
+      if (!std::isfinite(phi)) {  // no window: the cell stays unanalysed, so incomplete (below)
+        cells[i].reason = "no window: the curvature bound is too large for the ball";
+        return;
+      }
+      const IA s = IA(phi) - IA(rg) + IA(delta_max);
       o.window = (IA(2) * s * IA(rg) + exact::square(s)).sup();
     }
     cells[i] = analyse_restricted_cell(F, points, grid, p, o);

@@ -422,7 +422,11 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound&
         exact::UpwardRounding up;
         t = (IA(cY) + IA(delta)).sup();
       }
-      const double phi = exact::chord_to_geodesic_upper(K, t);
+      const double phi = std::isfinite(K) ? exact::chord_to_geodesic_upper(K, t) : INFINITY;
+      if (!std::isfinite(phi)) {  // (an infinite double must never enter an interval)
+        B.why = "the curvature bound around the point is too large for its graph";
+        continue;
+      }
       {
         exact::UpwardRounding up;
         R = (IA(phi) * IA(1.015625)).sup();
