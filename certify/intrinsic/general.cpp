@@ -21,6 +21,7 @@
 #include "exact/geodesic_bounds.hpp"
 #include "exact/interval_arithmetic.hpp"
 #include "exact/krawczyk.hpp"
+#include "exact/linear_algebra.hpp"
 #include "exact/number_types.hpp"
 
 namespace delcert::certify::detail {
@@ -33,7 +34,6 @@ using IA = exact::IntervalNumber;
 using json = nlohmann::json;
 
 IA ia(const Interval& i) { return exact::to_interval_number(i); }
-IA distance(const Box& X, std::span<const double> q) { return ball_distance(X, q); }
 
 // One m-simplex's EXISTENCE argument (general.hpp). Fills the witness or the reason.
 struct Existence {
@@ -106,7 +106,7 @@ class ExistenceProver {
       std::vector<mpq_class> M(m * m);
       for (int i = 0; i < m; ++i)
         for (int j = 0; j < m; ++j) M[i * m + j] = Binv(i, j);
-      if (exact_det(M, m) == 0) return fail(out, "the preconditioner is singular");
+      if (exact::determinant(M.data(), m) == 0) return fail(out, "the preconditioner is singular");
     }
     // The transformed rows B E (affine, so combined exactly in interval arithmetic).
     std::vector<std::vector<IA>> brows(m, std::vector<IA>(rows[0].size(), IA(0)));
@@ -192,7 +192,7 @@ class ExistenceProver {
         double lb;
         {
           exact::UpwardRounding up;
-          lb = (distance(X, P_.point(q)) - IA(balls_[q].delta)).inf();
+          lb = (ball_distance(X, P_.point(q)) - IA(balls_[q].delta)).inf();
         }
         if (lb < lb_min) lb_min = lb, nearest = q;
       }
@@ -225,24 +225,6 @@ class ExistenceProver {
     e.reason = std::move(why);
     return e;
   }
-  static mpq_class exact_det(std::vector<mpq_class> M, int n) {
-    mpq_class det = 1;
-    for (int c = 0; c < n; ++c) {
-      int piv = c;
-      while (piv < n && M[piv * n + c] == 0) ++piv;
-      if (piv == n) return 0;
-      if (piv != c) {
-        for (int j = 0; j < n; ++j) std::swap(M[c * n + j], M[piv * n + j]);
-        det = -det;
-      }
-      det *= M[c * n + c];
-      for (int i = c + 1; i < n; ++i) {
-        const mpq_class f = M[i * n + c] / M[c * n + c];
-        for (int j = c; j < n; ++j) M[i * n + j] -= f * M[c * n + j];
-      }
-    }
-    return det;
-  }
 
   // Upper bounds e_i of |G_i - E_i| on X ∩ Y (rows i of `others`): with t = |x - p_j|,
   // d_M(x, p_j')^2 - t^2 lies in [-2 t delta_j, Φ(t + delta_j)^2 - t^2], the upper end nondecreasing
@@ -251,7 +233,7 @@ class ExistenceProver {
     (void)sigma;
     auto g = [&](int j, double& tsup) {
       exact::UpwardRounding up;
-      tsup = distance(X, P_.point(j)).sup();
+      tsup = ball_distance(X, P_.point(j)).sup();
       const double phi = exact::chord_to_geodesic_upper(balls_[j].K, (IA(tsup) + IA(balls_[j].delta)).sup());
       if (!std::isfinite(phi) || !std::isfinite(tsup)) return static_cast<double>(INFINITY);
       return (exact::square(IA(phi)) - exact::square(IA(tsup))).sup();
