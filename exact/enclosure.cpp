@@ -12,26 +12,10 @@ namespace delcert::exact {
 
 // MPFI rounds every endpoint outward, so each operation below returns an interval containing
 // the exact result for all values of the operands (the library's documented contract).
-namespace {
-
-// MPFR keeps caches per thread (the constant pi, used by atan2, acos, asin, pi()): a thread that
-// used them and exits without mpfr_free_cache() leaks them (LeakSanitizer reports it for the
-// certifier's worker threads). Every Impl touches this thread-local guard, whose destructor frees
-// the calling thread's caches when the thread ends (the main thread's at exit).
-struct MpfrThreadCaches {
-  ~MpfrThreadCaches() { mpfr_free_cache(); }
-};
-void register_thread_caches() {
-  static thread_local MpfrThreadCaches guard;
-  (void)guard;
-}
-
-}  // namespace
-
 struct Enclosure::Impl {
   mpfi_t v;
   explicit Impl(mpfr_prec_t prec) {
-    register_thread_caches();
+    detail::register_thread_caches();
     mpfi_init2(v, prec);
   }
   ~Impl() { mpfi_clear(v); }
