@@ -173,9 +173,11 @@ class ExistenceProver {
       for (int i : sigma)
         if (!balls_[i].contains(X, P_.point(i)))
           return fail(out, "the box around the vertex leaves the graph ball of point " + std::to_string(i));
-      // Emptiness: every other point certainly farther in d_M than every point of sigma, on all of X.
-      double ub = 0;
-      for (int i : sigma) ub = std::max(ub, balls_[i].upper(X, P_.point(i)));
+      // Emptiness: every other point q certainly farther in d_M than rho = d_M(w, p_i') at the zero
+      // w in X. At w the distances to all points of sigma are equal, so rho <= each
+      // Φ_{K_i}(|w - p_i| + delta_i), hence rho <= ub = min_i sup_X of that.
+      double ub = INFINITY;
+      for (int i : sigma) ub = std::min(ub, balls_[i].upper(X, P_.point(i)));
       if (!std::isfinite(ub)) return fail(out, "the geodesic distance to the simplex's points is not bounded there");
       std::vector<double> centre(N);
       double rad;
@@ -185,20 +187,26 @@ class ExistenceProver {
         for (int v = 0; v < N; ++v) centre[v] = X[v].midpoint(), r2 += exact::square(IA(X[v].hi) - IA(X[v].lo));
         rad = (exact::sqrt(r2) + IA(ub) + IA(delta_max_)).sup();
       }
+      // Each q is tried on all of X first; where that does not separate (X's width counts twice: the
+      // inf of |x - q| and the sup of |x - p_i| are taken at different points of X), on pieces of U
+      // (PIECES below): w is over one of them.
       double lb_min = INFINITY;
       int nearest = -1;
+      json piecewise = json::array();
       for (int q : grid_.ball(centre, rad)) {
         if (std::binary_search(sigma.begin(), sigma.end(), q)) continue;
-        double lb;
-        {
-          exact::UpwardRounding up;
-          lb = (ball_distance(X, P_.point(q)) - IA(balls_[q].delta)).inf();
+        const double lb = lower_on(X, q);
+        if (lb > ub) {
+          if (lb < lb_min) lb_min = lb, nearest = q;
+          continue;
         }
-        if (lb < lb_min) lb_min = lb, nearest = q;
-      }
-      if (!(lb_min > ub)) {
-        return fail(out, "point " + std::to_string(nearest) + " is not proven farther: its geodesic distance is in [" +
-                             std::to_string(lb_min) + ", ...] and the simplex's is in [..., " + std::to_string(ub) + "]");
+        Piecewise pw;
+        if (!farther_on_pieces(C, sigma, q, U, H, X, 3 * m, pw)) {
+          return fail(out, "point " + std::to_string(q) + " is not proven farther: its geodesic distance is in [" +
+                               std::to_string(lb) + ", ...] and the simplex's is in [..., " + std::to_string(ub) +
+                               "] on the region, and not separated on " + std::to_string(pw.pieces) + " pieces of it");
+        }
+        piecewise.push_back({{"point", q}, {"pieces", pw.pieces}, {"margin_lower", pw.margin}});
       }
       // The boundary: on each face some component of B E beats the bound of B (G - E).
       if (!boundary_ok(C, brows, Binv, sigma, p, others, U, H)) {
@@ -214,6 +222,7 @@ class ExistenceProver {
                      {"geodesic_radius_upper", ub},
                      {"others_distance_lower", lb_min},
                      {"nearest_other", nearest},
+                     {"others_on_pieces", piecewise},
                      {"argument", "degree: the Euclidean equidistance map's zero survives the geodesic distortion"}};
       return out;
     }
@@ -224,6 +233,53 @@ class ExistenceProver {
   static Existence& fail(Existence& e, std::string why) {
     e.reason = std::move(why);
     return e;
+  }
+
+  // inf over X of |x - q| - delta_q, rounded down: d_M(x, q') >= it for every x in X.
+  double lower_on(const Box& X, int q) const {
+    exact::UpwardRounding up;
+    return (ball_distance(X, P_.point(q)) - IA(balls_[q].delta)).inf();
+  }
+
+  // PIECES. U is bisected (widest side first, `levels` times at most); on a piece U_j, with H_j
+  // holding the graph over U_j (H, or Krawczyk's tighter slab) and X_j = X ∩ image(U_j, H_j) (both
+  // enclose x(U_j)), q is farther than rho when inf_{X_j} |x - q| - delta_q > min_i sup_{X_j}
+  // Φ_{K_i}(|x - p_i| + delta_i): if w is over U_j, d_M(w, q') exceeds that and rho is at most it.
+  // The pieces cover U, and w is over U: q is farther than rho. X_j ⊆ X, so the graph balls that
+  // hold X hold X_j. `pw` gets the number of pieces tried and the least margin of the pieces proven.
+  struct Piecewise {
+    long pieces = 0;
+    double margin = INFINITY;  // min over the pieces of (lower - upper), rounded down
+  };
+  bool farther_on_pieces(const exact::ChartEnclosure& C, const std::vector<int>& sigma, int q, const Box& U,
+                         const Box& H, const Box& X, int levels, Piecewise& pw) const {
+    ++pw.pieces;
+    Box Xj;
+    if (!C.image(U, H, Xj)) return false;
+    for (std::size_t v = 0; v < Xj.size(); ++v) {
+      Xj[v] = Interval{std::max(Xj[v].lo, X[v].lo), std::min(Xj[v].hi, X[v].hi)};
+      if (!(Xj[v].lo <= Xj[v].hi)) return false;  // (cannot happen: both enclose x(U_j))
+    }
+    double ub = INFINITY;
+    for (int i : sigma) ub = std::min(ub, balls_[i].upper(Xj, P_.point(i)));
+    const double lb = lower_on(Xj, q);
+    if (lb > ub) {
+      exact::UpwardRounding up;
+      pw.margin = std::min(pw.margin, (IA(lb) - IA(ub)).inf());
+      return true;
+    }
+    if (levels == 0) return false;
+    int wide = 0;
+    for (std::size_t a = 1; a < U.size(); ++a)
+      if (U[a].width() > U[wide].width()) wide = static_cast<int>(a);
+    Box lo = U, hi = U;
+    lo[wide].hi = hi[wide].lo = U[wide].midpoint();
+    for (const Box* half : {&lo, &hi}) {
+      const exact::ChartResult ch = C.enclose_in(*half, H);
+      const Box& Hh = ch.status == exact::ChartStatus::unique ? ch.H : H;
+      if (!farther_on_pieces(C, sigma, q, *half, Hh, X, levels - 1, pw)) return false;
+    }
+    return true;
   }
 
   // Upper bounds e_i of |G_i - E_i| on X ∩ Y (rows i of `others`): with t = |x - p_j|,
