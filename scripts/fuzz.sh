@@ -5,7 +5,8 @@
 # (-rss_limit_mb=2048). Targets and what counts as a failure: fuzz/readers.hpp.
 #
 # The build goes to build-fuzz/ (cmake -DDELCERT_FUZZ=ON: exact/ and io/ only).
-# Each run starts from a fresh scratch corpus, build-fuzz/corpus/TARGET/, seeded from fixtures/;
+# Each run starts from a fresh scratch corpus, build-fuzz/corpus/TARGET/, seeded from fixtures/ (and,
+# for the spec reader, from its kept corpus fuzz/corpus/spec/);
 # crashing inputs are written to build-fuzz/artifacts/TARGET/. Keep every crash as a regression:
 # copy it to fuzz/regressions/TARGET/ (replayed by tests/fuzz/fuzz_regression_test.cpp).
 #
@@ -29,7 +30,9 @@ seed_corpus() {
   local target=$1 dir=$2
   case $target in
     points|complex) find fixtures -type f ! -name '*.json' ! -name '*.md' -exec cp {} "$dir/" \; ;;
-    spec|claims)    find fixtures -type f -name '*.json' -exec cp --backup=numbered {} "$dir/" \; ;;
+    spec|claims)    find fixtures -type f -name '*.json' -exec cp --backup=numbered {} "$dir/" \;
+                    # The spec target's own corpus of earlier campaigns (named by content hash).
+                    if [ "$target" = spec ]; then find fuzz/corpus/spec -type f -exec cp {} "$dir/" \; ; fi ;;
     polynomial)
       local i=0
       while IFS= read -r p; do

@@ -58,8 +58,9 @@ std::size_t proven_on_pieces(const IntrinsicDelaunay& D) {
   for (const auto& s : D.simplices) {
     const auto& w = s.witness;
     EXPECT_EQ(w.value("kind", ""), "intrinsic_voronoi_vertex");
-    if (w.at("others_distance_lower").is_number())
+    if (w.at("others_distance_lower").is_number()) {
       EXPECT_GT(w.at("others_distance_lower").get<double>(), w.at("geodesic_radius_upper").get<double>());
+    }
     const auto& pieces = w.at("others_on_pieces");
     for (const auto& e : pieces) {
       EXPECT_GE(e.at("pieces").get<long>(), 3);  // the region itself failed, then at least two halves
@@ -92,7 +93,9 @@ void expect_no_contradiction(const std::string& builtin, const io::PointSet& P, 
   // The piecewise emptiness is exercised here, against the closed form (on a random sample; on a
   // lattice every point is separated on the whole region or not at all).
   const std::size_t pieces = proven_on_pieces(general.D);
-  if (expect_pieces) EXPECT_GT(pieces, 0u);
+  if (expect_pieces) {
+    EXPECT_GT(pieces, 0u);
+  }
 }
 
 TEST(GeneralIntrinsic, SphereWithTheMetricWithheldNeverContradictsTheClosedForm) {
