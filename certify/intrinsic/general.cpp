@@ -176,8 +176,7 @@ class ExistenceProver {
       // Emptiness: every other point q certainly farther in d_M than rho = d_M(w, p_i') at the zero
       // w in X. At w the distances to all points of sigma are equal, so rho <= each
       // Φ_{K_i}(|w - p_i| + delta_i), hence rho <= ub = min_i sup_X of that.
-      double ub = INFINITY;
-      for (int i : sigma) ub = std::min(ub, balls_[i].upper(X, P_.point(i)));
+      const double ub = radius_upper(sigma, X);
       if (!std::isfinite(ub)) return fail(out, "the geodesic distance to the simplex's points is not bounded there");
       std::vector<double> centre(N);
       double rad;
@@ -189,7 +188,7 @@ class ExistenceProver {
       }
       // Each q is tried on all of X first; where that does not separate (X's width counts twice: the
       // inf of |x - q| and the sup of |x - p_i| are taken at different points of X), on pieces of U
-      // (PIECES below): w is over one of them.
+      // (PIECES, farther_on_halves): w is over one of them.
       double lb_min = INFINITY;
       int nearest = -1;
       json piecewise = json::array();
@@ -200,8 +199,8 @@ class ExistenceProver {
           if (lb < lb_min) lb_min = lb, nearest = q;
           continue;
         }
-        Piecewise pw;
-        if (!farther_on_pieces(C, sigma, q, U, H, X, 3 * m, pw)) {
+        Piecewise pw;  // (the region itself was the first piece tried)
+        if (!farther_on_halves(C, sigma, q, U, H, X, 3 * m, pw)) {
           return fail(out, "point " + std::to_string(q) + " is not proven farther: its geodesic distance is in [" +
                                std::to_string(lb) + ", ...] and the simplex's is in [..., " + std::to_string(ub) +
                                "] on the region, and not separated on " + std::to_string(pw.pieces) + " pieces of it");
@@ -240,34 +239,27 @@ class ExistenceProver {
     exact::UpwardRounding up;
     return (ball_distance(X, P_.point(q)) - IA(balls_[q].delta)).inf();
   }
+  // min_i sup_X Φ_{K_i}(|x - p_i| + delta_i) over the points p_i of sigma, rounded up: rho is at most
+  // it when the zero w is in X (the graph balls of sigma hold X).
+  double radius_upper(const std::vector<int>& sigma, const Box& X) const {
+    double ub = INFINITY;
+    for (int i : sigma) ub = std::min(ub, balls_[i].upper(X, P_.point(i)));
+    return ub;
+  }
 
-  // PIECES. U is bisected (widest side first, `levels` times at most); on a piece U_j, with H_j
-  // holding the graph over U_j (H, or Krawczyk's tighter slab) and X_j = X ∩ image(U_j, H_j) (both
-  // enclose x(U_j)), q is farther than rho when inf_{X_j} |x - q| - delta_q > min_i sup_{X_j}
-  // Φ_{K_i}(|x - p_i| + delta_i): if w is over U_j, d_M(w, q') exceeds that and rho is at most it.
-  // The pieces cover U, and w is over U: q is farther than rho. X_j ⊆ X, so the graph balls that
-  // hold X hold X_j. `pw` gets the number of pieces tried and the least margin of the pieces proven.
+  // PIECES. A U over which q is not separated is bisected (widest side first, `levels` times at
+  // most); on a half U_j, with H_j holding the graph over U_j (H, or Krawczyk's tighter slab) and
+  // X_j = X ∩ image(U_j, H_j) (both enclose x(U_j)), q is farther than rho when lower_on(X_j, q) >
+  // radius_upper(sigma, X_j): if w is over U_j, d_M(w, q') exceeds that and rho is at most it. The
+  // pieces cover U, and w is over U: q is farther than rho. X_j ⊆ X, so the graph balls that hold X
+  // hold X_j. `pw` counts the pieces tried (U itself, tried by the caller, included) and keeps the
+  // least margin of the pieces proven.
   struct Piecewise {
-    long pieces = 0;
+    long pieces = 1;
     double margin = INFINITY;  // min over the pieces of (lower - upper), rounded down
   };
-  bool farther_on_pieces(const exact::ChartEnclosure& C, const std::vector<int>& sigma, int q, const Box& U,
+  bool farther_on_halves(const exact::ChartEnclosure& C, const std::vector<int>& sigma, int q, const Box& U,
                          const Box& H, const Box& X, int levels, Piecewise& pw) const {
-    ++pw.pieces;
-    Box Xj;
-    if (!C.image(U, H, Xj)) return false;
-    for (std::size_t v = 0; v < Xj.size(); ++v) {
-      Xj[v] = Interval{std::max(Xj[v].lo, X[v].lo), std::min(Xj[v].hi, X[v].hi)};
-      if (!(Xj[v].lo <= Xj[v].hi)) return false;  // (cannot happen: both enclose x(U_j))
-    }
-    double ub = INFINITY;
-    for (int i : sigma) ub = std::min(ub, balls_[i].upper(Xj, P_.point(i)));
-    const double lb = lower_on(Xj, q);
-    if (lb > ub) {
-      exact::UpwardRounding up;
-      pw.margin = std::min(pw.margin, (IA(lb) - IA(ub)).inf());
-      return true;
-    }
     if (levels == 0) return false;
     int wide = 0;
     for (std::size_t a = 1; a < U.size(); ++a)
@@ -275,9 +267,22 @@ class ExistenceProver {
     Box lo = U, hi = U;
     lo[wide].hi = hi[wide].lo = U[wide].midpoint();
     for (const Box* half : {&lo, &hi}) {
+      ++pw.pieces;
       const exact::ChartResult ch = C.enclose_in(*half, H);
       const Box& Hh = ch.status == exact::ChartStatus::unique ? ch.H : H;
-      if (!farther_on_pieces(C, sigma, q, *half, Hh, X, levels - 1, pw)) return false;
+      Box Xj;
+      if (!C.image(*half, Hh, Xj)) return false;
+      for (std::size_t v = 0; v < Xj.size(); ++v) {
+        Xj[v] = Interval{std::max(Xj[v].lo, X[v].lo), std::min(Xj[v].hi, X[v].hi)};
+        if (!(Xj[v].lo <= Xj[v].hi)) return false;  // (cannot happen: both enclose x(U_j))
+      }
+      const double ub = radius_upper(sigma, Xj), lb = lower_on(Xj, q);
+      if (lb > ub) {
+        exact::UpwardRounding up;
+        pw.margin = std::min(pw.margin, (IA(lb) - IA(ub)).inf());
+      } else if (!farther_on_halves(C, sigma, q, *half, Hh, X, levels - 1, pw)) {
+        return false;
+      }
     }
     return true;
   }
