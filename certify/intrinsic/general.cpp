@@ -136,7 +136,7 @@ class ExistenceProver {
     }
     if (!std::isfinite(e_est)) return fail(out, "the geodesic distortion at the vertex is not bounded");
     std::string last = "no box tried";
-    for (double factor : {4.0, 16.0, 64.0, 256.0}) {
+    for (double factor : {1.5, 2.5, 4.0, 16.0, 64.0, 256.0}) {
       const double w = std::max(factor * e_est, 1e-12 * (1 + std::abs(uc[0])));
       Box U(m);
       for (int a = 0; a < m; ++a) U[a] = Interval{uc[a] - w, uc[a] + w};
@@ -173,6 +173,11 @@ class ExistenceProver {
       for (int i : sigma)
         if (!balls_[i].contains(X, P_.point(i)))
           return fail(out, "the box around the vertex leaves the graph ball of point " + std::to_string(i));
+      // The boundary: on each face some component of B E beats the bound of B (G - E).
+      if (!boundary_ok(C, brows, Binv, sigma, p, others, U, H)) {
+        last = "the distortion is not beaten on the boundary of the box";
+        continue;
+      }
       // Emptiness: every other point q certainly farther in d_M than rho = d_M(w, p_i') at the zero
       // w in X. At w the distances to all points of sigma are equal, so rho <= each
       // Φ_{K_i}(|w - p_i| + delta_i), hence rho <= ub = min_i sup_X of that.
@@ -206,11 +211,6 @@ class ExistenceProver {
                                "] on the region, and not separated on " + std::to_string(pw.pieces) + " pieces of it");
         }
         piecewise.push_back({{"point", q}, {"pieces", pw.pieces}, {"margin_lower", pw.margin}});
-      }
-      // The boundary: on each face some component of B E beats the bound of B (G - E).
-      if (!boundary_ok(C, brows, Binv, sigma, p, others, U, H)) {
-        last = "the distortion is not beaten on the boundary of the box";
-        continue;
       }
       out.proven = true;
       json region = json::array();
@@ -287,15 +287,17 @@ class ExistenceProver {
     return true;
   }
 
-  // Upper bounds e_i of |G_i - E_i| on X ∩ Y (rows i of `others`): with t = |x - p_j|,
-  // d_M(x, p_j')^2 - t^2 lies in [-2 t delta_j, Φ(t + delta_j)^2 - t^2], the upper end nondecreasing
-  // in t (Φ' >= 1, Φ(t) >= t), so e_i = g_i + g_p + 2 max(t_i delta_i, t_p delta_p) at the sup of t.
+  // Upper bounds e_i of |G_i - E_i| on X ∩ Y (rows i of `others`): with t_j = |x - p_j|,
+  // d_M(x, p_j')^2 - t_j^2 lies in [-2 t_j delta_j, g_j = Φ(t_j + delta_j)^2 - t_j^2] (d >= t - delta;
+  // the upper end nondecreasing in t: Φ' >= 1, Φ(t) >= t), and G_i - E_i is the difference of the
+  // terms of p_i and p: it lies in [-2 t_i delta_i - g_p, g_i + 2 t_p delta_p], so e_i = max(g_i +
+  // 2 t_p delta_p, g_p + 2 t_i delta_i) at the sups of t (the two distortions never add up).
   std::vector<double> distortion(const std::vector<int>& sigma, int p, const std::vector<int>& others, const Box& X) const {
     (void)sigma;
     auto g = [&](int j, double& tsup) {
       exact::UpwardRounding up;
       tsup = ball_distance(X, P_.point(j)).sup();
-      const double phi = exact::chord_to_geodesic_upper(balls_[j].K, (IA(tsup) + IA(balls_[j].delta)).sup());
+      const double phi = balls_[j].phi((IA(tsup) + IA(balls_[j].delta)).sup());
       if (!std::isfinite(phi) || !std::isfinite(tsup)) return static_cast<double>(INFINITY);
       return (exact::square(IA(phi)) - exact::square(IA(tsup))).sup();
     };
@@ -310,8 +312,8 @@ class ExistenceProver {
         e.push_back(INFINITY);
         continue;
       }
-      const IA cross = IA(2) * std::max((IA(ti) * IA(balls_[i].delta)).sup(), (IA(tp) * IA(balls_[p].delta)).sup());
-      e.push_back((IA(gi) + IA(gp) + cross).sup());
+      e.push_back(std::max((IA(gi) + IA(2) * IA(tp) * IA(balls_[p].delta)).sup(),
+                           (IA(gp) + IA(2) * IA(ti) * IA(balls_[i].delta)).sup()));
     }
     return e;
   }
@@ -414,7 +416,7 @@ IntrinsicDelaunay intrinsic_delaunay_general(const io::ManifoldSpec& spec, const
     o.chart = &*balls[i].chart;
     {
       exact::UpwardRounding up;
-      const double phi = exact::chord_to_geodesic_upper(balls[i].K, (IA(rg) + IA(delta[i])).sup());
+      const double phi = balls[i].phi((IA(rg) + IA(delta[i])).sup());
       if (!std::isfinite(phi)) {  // no window: the cell stays unanalysed, so incomplete (below)
         cells[i].reason = "no window: the curvature bound is too large for the ball";
         return;
@@ -427,25 +429,37 @@ IntrinsicDelaunay intrinsic_delaunay_general(const io::ManifoldSpec& spec, const
   // Completeness: every window cell complete, and it found Del_RM's m-simplices and no other.
   std::set<std::vector<int>> S;
   for (const auto& s : R->simplices) S.insert(s.simplex);
-  for (int p = 0; p < n && incomplete.empty(); ++p) {
-    if (!balls[p].ok) {
-      incomplete = "no graph ball around point " + std::to_string(p) + ": " + balls[p].why;
-      break;
-    }
+  // Every failing cell is recorded (a place for the refiner); the first one is the reason.
+  const bool covered = incomplete.empty();
+  for (int p = 0; p < n && covered; ++p) {
+    IntrinsicUndecidedPlace place{{p}, "", {}};
     const RestrictedCellReport& c = cells[p];
-    if (!c.complete || !c.unresolved_faces.empty() || !c.face_points.empty()) {
+    if (static_cast<std::size_t>(p) < R->cells.size()) place.location = R->cells[p].covering_location;
+    if (!balls[p].ok) {
+      place.reason = "no graph ball around point " + std::to_string(p) + ": " + balls[p].why;
+    } else if (!c.complete || !c.unresolved_faces.empty() || !c.face_points.empty()) {
       std::string why = c.reason;
       if (why.empty() && !c.unresolved_faces.empty()) why = c.unresolved_faces.front().reason;
       if (why.empty()) why = "Del_RM(P) has a face that is in no m-simplex";
-      if (!c.undecided.empty()) why += " (" + c.undecided.front().reason + ")";
-      incomplete = "the window cell of point " + std::to_string(p) + " is not complete: " + why;
-      break;
-    }
-    for (const auto& v : c.vertices)
-      if (!S.count(v.simplex)) {
-        incomplete = "the window cell of point " + std::to_string(p) + " found a simplex that check 12 did not";
-        break;
+      if (!c.undecided.empty()) {
+        why += " (" + c.undecided.front().reason + ")";
+        place.points = c.undecided.front().candidates, place.location = c.undecided.front().location;
+      } else if (!c.unresolved_faces.empty()) {
+        place.points = c.unresolved_faces.front().candidates, place.location = c.unresolved_faces.front().location;
       }
+      place.reason = "the window cell of point " + std::to_string(p) + " is not complete: " + why;
+    } else {
+      for (const auto& v : c.vertices)
+        if (!S.count(v.simplex)) {
+          place.reason = "the window cell of point " + std::to_string(p) + " found a simplex that check 12 did not";
+          place.points = v.simplex;
+          for (const auto& iv : v.x) place.location.push_back(iv.midpoint());
+          break;
+        }
+    }
+    if (place.reason.empty()) continue;
+    if (incomplete.empty()) incomplete = place.reason;
+    D.undecided_places.push_back(std::move(place));
   }
   // Existence, per m-simplex of Del_RM(P).
   const ExistenceProver prover(F, points, grid, balls, delta_max);

@@ -111,6 +111,28 @@ exact::ChartEnclosure orthogonal_chart(const exact::ImplicitSystem& F, std::span
 }
 
 
+// An upper bound of the spectral norm of every symmetric matrix in the m x m interval matrix S
+// (row-major; S[a][c] and S[c][a] both enclose the same entries), rounded up: the largest row sum of
+// absolute values (a norm, >= the spectral radius); for m = 2 also the eigenvalue formula
+// max |lambda| = |s + d| / 2 + sqrt((s - d)^2 / 4 + b^2) ([[s, b], [b, d]]), each term bounded by its
+// sup over the intervals (b the intersection of the two enclosures of the off-diagonal entry).
+// Call under exact::UpwardRounding.
+double symmetric_norm_bound(const std::vector<IA>& S, int m) {
+  auto mag = [](const IA& x) { return std::max(std::abs(x.inf()), std::abs(x.sup())); };
+  double rows = 0;
+  for (int a = 0; a < m; ++a) {
+    IA row(0);
+    for (int c = 0; c < m; ++c) row += IA(mag(S[a * m + c]));
+    rows = std::max(rows, row.sup());
+  }
+  if (m != 2) return rows;
+  const double blo = std::max(S[1].inf(), S[2].inf()), bhi = std::min(S[1].sup(), S[2].sup());
+  const IA b = blo <= bhi ? IA(std::max(std::abs(blo), std::abs(bhi))) : IA(mag(S[1]));
+  const IA half_sum = IA(mag(S[0] + S[3])) / IA(2), half_diff = IA(mag(S[0] - S[3])) / IA(2);
+  const double eig = (half_sum + exact::sqrt(exact::square(half_diff) + exact::square(b))).sup();
+  return std::isfinite(eig) ? std::min(rows, eig) : rows;
+}
+
 // THE TANGENTIAL CURVATURE BOUND on a box X, in a frame (T, Nn) (T^T Nn = 0 exactly; g_T, G_N its
 // Gram bounds; any frame is valid, one taken at X's centre makes the tilt small). exact::curvature_bound bounds |II(u, u)| by the Hessians' norms in
 // every direction, the normal ones included (twice the truth on a torus of revolution); here only
@@ -121,19 +143,41 @@ exact::ChartEnclosure orthogonal_chart(const exact::ImplicitSystem& F, std::span
 // sigma_min(J Nn) (sigma_min^2 from gram_eigenvalue_bounds on the k x k matrix J Nn). Then
 //   |u^T H_e u| <= |alpha^T (T^T H_e T) alpha| + 2 |a| |n| ||H_e|| + |n|^2 ||H_e||
 //               <= ||T^T H_e T|| / g_T + (2 tau + tau^2) ||H_e||,
-// ||.|| the largest row sum of absolute values (>= the spectral norm of a symmetric matrix), and
+// ||H_e|| the largest row sum of absolute values (>= the spectral norm of a symmetric matrix),
+// ||T^T H_e T|| bounded by symmetric_norm_bound, J enclosed in its centred form (below), and
 // |II(u, u)|^2 <= sum_e (u^T H_e u)^2 / lambda_min(J J^T) (exact/geodesic_bounds.hpp's derivation).
 // Every enclosure is an interval evaluation over X under upward rounding; +inf when a bound fails.
 double tangential_curvature(const exact::ImplicitSystem& F, const Hessians& D, const Frame& fr, const Box& X) {
   const int N = D.N, k = D.k, m = N - k;
-  std::vector<Interval> Jv;
-  if (!exact::jacobian_enclosure(F, X, Jv)) return INFINITY;
+  std::vector<Interval> Jv, Jm;
+  std::vector<double> mid(N);
+  Box Xm(N);
+  for (int v = 0; v < N; ++v) mid[v] = X[v].midpoint(), Xm[v] = Interval::point(mid[v]);
+  if (!exact::jacobian_enclosure(F, X, Jv) || !exact::jacobian_enclosure(F, Xm, Jm)) return INFINITY;
+  const std::vector<Interval>&T = fr.T_enc, &Nn = fr.Nn_enc;
+  std::vector<IA> H(static_cast<std::size_t>(k) * N * N);  // H_e(X), e x N x N
+  {
+    exact::UpwardRounding up;
+    std::vector<IA> xs(N);
+    for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
+    for (std::size_t i = 0; i < H.size(); ++i)
+      H[i] = D.d2[i].evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t t) { return D.coef[i][t]; });
+    // THE CENTRED JACOBIAN: grad F_e(x) = grad F_e(mid) + integral of H_e(mid + s (x - mid)) (x - mid)
+    // ds, mid in X, X convex: grad F_e(x) in J(mid) + H_e(X) (X - mid) for x in X. Far from the
+    // origin the plain evaluation over X loses to the dependency problem what this form keeps; both
+    // hold J(x), so their intersection does (never empty; a guard keeps the plain one).
+    for (int e = 0; e < k; ++e)
+      for (int v = 0; v < N; ++v) {
+        IA s = ia(Jm[e * N + v]);
+        for (int w = 0; w < N; ++w) s += H[(e * N + v) * N + w] * (ia(X[w]) - IA(mid[w]));
+        const Interval c = exact::to_interval(s);
+        Interval& j = Jv[e * N + v];
+        if (std::max(c.lo, j.lo) <= std::min(c.hi, j.hi)) j = Interval{std::max(c.lo, j.lo), std::min(c.hi, j.hi)};
+      }
+  }
   const double lmin = exact::gram_eigenvalue_bounds(Jv, k, N).lower;
   if (!(lmin > 0)) return INFINITY;
-  const std::vector<Interval>&T = fr.T_enc, &Nn = fr.Nn_enc;
   exact::UpwardRounding up;
-  std::vector<IA> xs(N);
-  for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
   // J T (k x m), J Nn (k x k).
   IA jt2(0);
   std::vector<Interval> JN(k * k);
@@ -154,32 +198,26 @@ double tangential_curvature(const exact::ImplicitSystem& F, const Hessians& D, c
   if (!(smin2 > 0)) return INFINITY;
   const IA tau = exact::sqrt(IA(fr.GN) / IA(fr.gT) * jt2 / IA(smin2));
   IA b2(0);
-  std::vector<IA> H(N * N);
   for (int e = 0; e < k; ++e) {
+    const IA* He = &H[static_cast<std::size_t>(e) * N * N];
     double norm = 0;
     for (int v = 0; v < N; ++v) {
       IA row(0);
-      for (int w = 0; w < N; ++w) {
-        const std::size_t i = (static_cast<std::size_t>(e) * N + v) * N + w;
-        H[v * N + w] = D.d2[i].evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t t) { return D.coef[i][t]; });
-        row += IA(std::max(std::abs(H[v * N + w].inf()), std::abs(H[v * N + w].sup())));
-      }
+      for (int w = 0; w < N; ++w) row += IA(std::max(std::abs(He[v * N + w].inf()), std::abs(He[v * N + w].sup())));
       norm = std::max(norm, row.sup());
     }
-    double tnorm = 0;  // T^T H_e T, largest row sum
-    for (int a = 0; a < m; ++a) {
-      IA row(0);
+    std::vector<IA> S(m * m);  // T^T H_e T
+    for (int a = 0; a < m; ++a)
       for (int c = 0; c < m; ++c) {
         IA s(0);
         for (int v = 0; v < N; ++v) {
           IA hv(0);
-          for (int w = 0; w < N; ++w) hv += H[v * N + w] * ia(T[w * m + c]);
+          for (int w = 0; w < N; ++w) hv += He[v * N + w] * ia(T[w * m + c]);
           s += ia(T[v * m + a]) * hv;
         }
-        row += IA(std::max(std::abs(s.inf()), std::abs(s.sup())));
+        S[a * m + c] = s;
       }
-      tnorm = std::max(tnorm, row.sup());
-    }
+    const double tnorm = symmetric_norm_bound(S, m);
     const IA be = IA(tnorm) / IA(fr.gT) + (IA(2) * tau + exact::square(tau)) * IA(norm);
     b2 += exact::square(be);
   }
@@ -289,6 +327,102 @@ double exit_distance2(const GraphBall& B) {
   return low;
 }
 
+struct Leaf {
+  Box U, H, X;
+  double K = 0;
+  int depth = 0;
+};
+
+// THE CURVATURE LEAVES of a cell U_c of A (slab H_c): sub-boxes U of U_c, each with the contraction
+// of H_c over U (Krawczyk's, which holds the cell's points over U; H_c itself when it fails), its
+// image X and a curvature bound on X (the least of exact::curvature_bound and the tangential bound
+// in a frame at X's centre). They start as a grid (`sides` per side); then, while
+// a budget of twice the grid lasts, the leaf with the largest bound is split in 2^m (3 times at
+// most), each child bounded by the least of its own bound and its parent's (both hold on its
+// points). The leaves cover the cell's graph: the largest bound, returned, bounds |II| on it. The
+// selector is proved positive on every leaf of the grid (`selected`; the children's points are
+// theirs). +inf when an image overflows.
+double curvature_leaves(const exact::ImplicitSystem& F, const exact::CurvatureBound& curvature, const Hessians& D2,
+                        const exact::ChartEnclosure& C, const Box& Uc, const Box& Hc, const exact::Polynomial* selector,
+                        const std::vector<IA>& coef, int sides, std::vector<Leaf>& out, bool& selected) {
+  const int N = F.ambient_dimension(), m = F.intrinsic_dimension();
+  auto make = [&](const Box& U, const Box& Hp, double cap, int depth, Leaf& leaf) {
+    const exact::ChartResult tight = C.enclose_in(U, Hp);
+    leaf.U = U, leaf.H = tight.status == exact::ChartStatus::unique ? tight.H : Hp, leaf.depth = depth;
+    if (!C.image(U, leaf.H, leaf.X)) return false;
+    std::vector<double> mid(N);
+    for (int v = 0; v < N; ++v) mid[v] = leaf.X[v].midpoint();
+    double Kt = INFINITY;
+    try {
+      Kt = tangential_curvature(F, D2, make_frame(F, mid), leaf.X);
+    } catch (const std::domain_error&) {
+    }
+    leaf.K = std::min({cap, curvature(leaf.X), Kt});
+    return true;
+  };
+  int subs = 1;
+  for (int a = 0; a < m; ++a) subs *= sides;
+  std::vector<Leaf> L;
+  for (int sub = 0; sub < subs; ++sub) {
+    Box U = Uc;
+    for (int a = 0, rest = sub; a < m; ++a, rest /= sides) {
+      const double w = Uc[a].width() / sides, lo = Uc[a].lo + w * (rest % sides);
+      U[a] = Interval{rest % sides == 0 ? Uc[a].lo : lo, rest % sides == sides - 1 ? Uc[a].hi : lo + w};
+    }
+    Leaf leaf;
+    if (!make(U, Hc, INFINITY, 0, leaf)) return INFINITY;
+    if (selector) {
+      exact::UpwardRounding up;
+      std::vector<IA> xs(N);
+      for (int v = 0; v < N; ++v) xs[v] = ia(leaf.X[v]);
+      if (!(selector->evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t i) { return coef[i]; }).inf() > 0)) {
+        selected = false;
+        return INFINITY;
+      }
+    }
+    L.push_back(std::move(leaf));
+  }
+  auto less = [&](std::size_t a, std::size_t b) { return L[a].K < L[b].K; };
+  std::vector<std::size_t> heap(L.size());
+  for (std::size_t i = 0; i < heap.size(); ++i) heap[i] = i;
+  std::make_heap(heap.begin(), heap.end(), less);
+  for (int budget = 2 * subs; budget > 0 && std::isfinite(L[heap.front()].K) && L[heap.front()].depth < 3;) {
+    std::pop_heap(heap.begin(), heap.end(), less);
+    const std::size_t top = heap.back();
+    heap.pop_back();
+    const Leaf parent = L[top];
+    for (int child = 0; child < (1 << m); ++child, --budget) {
+      Box U = parent.U;
+      for (int a = 0; a < m; ++a) {
+        const double midp = parent.U[a].midpoint();
+        U[a] = (child >> a) & 1 ? Interval{midp, parent.U[a].hi} : Interval{parent.U[a].lo, midp};
+      }
+      Leaf leaf;
+      if (!make(U, parent.H, parent.K, parent.depth + 1, leaf)) return INFINITY;
+      if (child == 0) L[top] = std::move(leaf), heap.push_back(top);
+      else L.push_back(std::move(leaf)), heap.push_back(L.size() - 1);
+      std::push_heap(heap.begin(), heap.end(), less);
+    }
+  }
+  const double K = L[heap.front()].K;
+  for (auto& leaf : L) out.push_back(std::move(leaf));
+  return K;
+}
+
+// The profile of B (GraphBall::local_K): per leaf, inf |x - q| over its X rounded down, sorted, with
+// the running max of the leaves' bounds.
+void set_profile(GraphBall& B, const std::vector<Leaf>& leaves, std::span<const double> q) {
+  std::vector<std::pair<double, double>> p;
+  for (const Leaf& leaf : leaves) {
+    exact::UpwardRounding up;
+    p.emplace_back(ball_distance(leaf.X, q).inf(), leaf.K);
+  }
+  std::sort(p.begin(), p.end());
+  double run = 0;
+  for (auto& [d, k] : p) run = std::max(run, k), k = run;
+  B.profile = std::move(p);
+}
+
 }  // namespace
 
 GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound& curvature, const Hessians& D2,
@@ -348,8 +482,10 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound&
     std::vector<IA> coef;
     if (selector)
       for (const auto& t : selector->terms()) coef.push_back(ia(exact::enclose(t.coefficient)));
-    for (int attempt = 0; attempt < 6; ++attempt) {
-      B.n = attempt < 2 ? 1 : attempt < 4 ? 2 : 4;
+    // Grids of 1, 2, 4 cells per side (and 8 for m <= 2), each tried twice (the second time reaching
+    // farther when the first did not reach far enough).
+    for (int attempt = 0; attempt < (m <= 2 ? 8 : 6); ++attempt) {
+      B.n = 1 << (attempt / 2);
       if (attempt % 2 == 0) cY_guess = cY_first;
       double need;
       {
@@ -373,44 +509,15 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound&
       }
       const double exit2 = exit_distance2(B);
       // K on every cell of A (the geodesics' region is checked against the exit distance below);
-      // s > 0 there.
+      // s > 0 there. The leaves' bounds also give the local profile (GraphBall::local_K).
       double K = 0;
       bool selected = true;
+      std::vector<Leaf> leaves;
       for (std::size_t c = 0; c < B.in_A.size() && selected && K < INFINITY; ++c) {
         if (!B.in_A[c]) continue;
-        // On sub-boxes of the cell (s per side), each with the contraction of H_c over it (which holds
-        // the cell's points over it): tighter images, a tighter K.
-        const Box Uc = B.cell_box(static_cast<int>(c));
-        const int sides = m <= 2 ? 8 : 4;
-        int subs = 1;
-        for (int a = 0; a < m; ++a) subs *= sides;
-        for (int sub = 0; sub < subs && selected && K < INFINITY; ++sub) {
-          Box U = Uc;
-          for (int a = 0, rest = sub; a < m; ++a, rest /= sides) {
-            const double w = Uc[a].width() / sides, lo = Uc[a].lo + w * (rest % sides);
-            U[a] = Interval{rest % sides == 0 ? Uc[a].lo : lo, rest % sides == sides - 1 ? Uc[a].hi : lo + w};
-          }
-          const exact::ChartResult tight = C.enclose_in(U, B.H[c]);
-          Box X;
-          if (!C.image(U, tight.status == exact::ChartStatus::unique ? tight.H : B.H[c], X)) {
-            K = INFINITY;
-            break;
-          }
-          if (selector) {
-            exact::UpwardRounding up;
-            std::vector<IA> xs(N);
-            for (int v = 0; v < N; ++v) xs[v] = ia(X[v]);
-            selected = selector->evaluate_with<IA>(std::span<const IA>(xs), [&](std::size_t i) { return coef[i]; }).inf() > 0;
-          }
-          std::vector<double> mid(N);
-          for (int v = 0; v < N; ++v) mid[v] = X[v].midpoint();
-          double Kt = INFINITY;
-          try {
-            Kt = tangential_curvature(F, D2, make_frame(F, mid), X);
-          } catch (const std::domain_error&) {
-          }
-          K = std::max(K, std::min(curvature(X), Kt));
-        }
+        const int sides = B.n >= 8 ? 2 : m <= 2 ? 8 : 4;  // (about as many leaves in all at n = 8 as at 4)
+        K = std::max(K, curvature_leaves(F, curvature, D2, C, B.cell_box(static_cast<int>(c)), B.H[c], selector, coef,
+                                         sides, leaves, selected));
       }
       if (!selected) {
         B.why = "the selector is not proven positive on the graph around the point";
@@ -443,6 +550,7 @@ GraphBall make_ball(const exact::ImplicitSystem& F, const exact::CurvatureBound&
         continue;
       }
       B.K = K, B.ok = true;
+      set_profile(B, leaves, x);
       return B;
     }
   } catch (const std::domain_error& e) {

@@ -5,7 +5,11 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -129,6 +133,31 @@ struct GraphBall {
     }
     return holds(U, Hb);
   }
+  // THE LOCAL PROFILE: per curvature leaf of A (graph_ball.cpp, curvature_leaves; they cover A's
+  // graph), (inf |x - q| over its image box, rounded down; the largest leaf bound among the leaves up
+  // to there), sorted. local_K(s) bounds |II| on every point of A's graph within s of q (each lies
+  // in a leaf whose box comes within s); K where the profile does not reach.
+  std::vector<std::pair<double, double>> profile;
+  double local_K(double s) const {
+    auto it = std::upper_bound(profile.begin(), profile.end(), std::make_pair(s, static_cast<double>(INFINITY)));
+    return it == profile.begin() ? 0 : std::min(K, std::prev(it)->second);
+  }
+  // Φ for q: d_M(x, q') <= phi(t) for x in Y_q with |x - q| + delta <= t <= c_Y + delta, rounded
+  // up. Why: L = Φ_K(t) bounds d_M(x, q') (the ball's argument); a minimizing geodesic from x to q'
+  // has length d <= L < R, stays on A's graph (the ball's argument) and within d of q', so within
+  // L + delta of q: its curvature is at most K1 = local_K(L + delta) <= K, and K1 d <= K R <= π, so
+  // by Schur's comparison d <= Φ_{K1}(|x - q'|) <= Φ_{K1}(t).
+  double phi(double t) const {
+    const double L = exact::chord_to_geodesic_upper(K, t);
+    if (!std::isfinite(L)) return L;
+    double s;
+    {
+      exact::UpwardRounding up;
+      s = (IA(L) + IA(delta)).sup();
+    }
+    const double K1 = local_K(s);
+    return K1 < K ? std::min(L, exact::chord_to_geodesic_upper(K1, t)) : L;
+  }
   // d_M(x, q') <= this for every x in X ∩ Y_q (the caller checked contains(X)), rounded up.
   double upper(const Box& X, std::span<const double> q) const {
     double t;
@@ -136,7 +165,7 @@ struct GraphBall {
       exact::UpwardRounding up;
       t = (ball_distance(X, q) + IA(delta)).sup();
     }
-    return exact::chord_to_geodesic_upper(K, t);
+    return phi(t);
   }
 };
 
