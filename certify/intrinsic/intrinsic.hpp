@@ -55,6 +55,12 @@ struct IntrinsicUndecided {
   std::string reason;  // e.g. "a point is on the boundary of its empty geodesic ball (not protected)"
 };
 
+// Where the completeness argument fails (the general engine; the refiner inserts points there).
+struct IntrinsicUndecidedPlace {
+  std::vector<int> points;        // the point whose cell fails, or an undecided box's candidates
+  std::string reason;
+  std::vector<double> location;   // ambient, near M; empty: none known
+};
 struct IntrinsicDelaunay {
   bool computed = false;          // a supported closed-form metric; otherwise `reason` says why not
   std::string metric;             // "sphere", "product_of_circles", "so3", or "" (none declared)
@@ -65,6 +71,7 @@ struct IntrinsicDelaunay {
   std::vector<IntrinsicUndecided> undecided; // candidates neither, sorted by simplex
   bool complete = false;          // `simplices` are ALL the m-simplices of Del_M(P), and Del_M is pure
   std::string reason;             // why not computed / not complete ("" when complete)
+  std::vector<IntrinsicUndecidedPlace> undecided_places;  // every failing cell's first place (general engine)
 };
 
 // The spec's declared metric, normalised (a product of one sphere, of one SO(3), or of circles on
