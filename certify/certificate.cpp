@@ -198,7 +198,6 @@ json Certificate::to_json(bool with_times) const {
     j["times_seconds"] = t;
   }
   j["verdict"] = to_string(overall());
-  if (!mesh_feedback.is_null()) j["mesh_feedback"] = mesh_feedback;
   return j;
 }
 
@@ -216,7 +215,6 @@ std::string Certificate::to_text(bool with_times) const {
   }
   o["checks"] = cs;
   o["filter"] = O(j["filter"]);
-  if (j.contains("mesh_feedback")) o["mesh_feedback"] = O(j["mesh_feedback"]);
   if (with_times) o["times_seconds"] = O(j["times_seconds"]);
   return o.dump(2) + "\n";
 }

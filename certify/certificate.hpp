@@ -99,7 +99,6 @@ struct Certificate {
   std::vector<CheckEntry> checks;
   exact::FilterStats filter;
   std::vector<std::pair<std::string, double>> times;  // seconds, wall clock
-  nlohmann::json mesh_feedback;  // null, or delcert-certify's presentation for a mesh (io/mesh_feedback.hpp): no verdict
   std::vector<std::vector<int>> restricted_complex;  // Del_RM(P) when check 12 proves it complete and pure; not written
 
   // Over the claimed checks: REFUTED if any is refuted, else UNDECIDED if any is undecided, else

@@ -56,9 +56,8 @@ int main(int argc, char** argv) {
   app.add_option("--claims", o.claims, "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
   app.add_flag("--skip-restricted", o.skip_restricted, "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
-  std::string report_path;
+  std::string report_path, fix_out;
   app.add_option("--report", report_path, "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the complex with the witnesses); written atomically with --out");
-  std::string fix_out;
   app.add_option("--fix-out", fix_out, "surface meshes (--complex OFF, OBJ, PLY or STL; m = 2): when check 12 proves Del_RM(P) complete and pure, write its triangles to this file in the format and vertex numbering of --complex, to replace the mesh; written atomically with --out; not written otherwise (the exit status is the verdict's)");
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))->capture_default_str();
@@ -105,17 +104,10 @@ int main(int argc, char** argv) {
     o.world = world.get();
     certify::Certificate cert = certify::run_certify(o);
     if (!root) return std::stoi(world->broadcast({}));  // rank 0's exit status, so that mpirun's is the verdict's
-    // A surface mesh: its non-Delaunay edges in the file's numbering, and --fix-out (io/mesh_feedback.hpp), from the
-    // bytes the certificate hashed.
-    io::MeshReport mesh;
-    if (cert.inputs["complex"].is_object() && cert.inputs["manifold"]["intrinsic_dimension"] == 2) {
-      const std::string text = io::read_file(o.complex);
-      if (certify::detail::Sha256::hex(text) != cert.inputs["complex"]["sha256"])
-        throw io::InputError(o.complex, 0, "the file changed while it was certified; nothing written");
-      mesh = io::report_mesh(text, o.complex, cert.inputs["complex"]["read"]["format"], cert.parameters["kind"] == "restricted",
-                             cert.restricted_complex, cert.checks[11].summary, !fix_out.empty());
-      cert.mesh_feedback = mesh.json;
-    }
+    // A surface mesh: its non-Delaunay edges in its file's numbering, --fix-out's mesh (presentation, io/mesh_feedback.hpp).
+    const io::MeshReport mesh = io::report_mesh(cert.inputs, cert.parameters["kind"] == "restricted", cert.restricted_complex,
+                                                cert.checks[11].details.value("reason", cert.checks[11].summary), fix_out, certify::detail::Sha256::hex);
+    if (!mesh.json.is_null()) cert.inputs["complex"]["mesh_feedback"] = mesh.json;
     std::vector<std::pair<std::string, std::string>> files;
     if (mesh.fixed_mesh) files.emplace_back(fix_out, *mesh.fixed_mesh);
     if (!out.empty()) files.emplace_back(out, cert.to_text(!no_times));
@@ -130,8 +122,7 @@ int main(int argc, char** argv) {
       std::printf("check %-2d %-28s %-10s %-13s %s%s\n", c.number(), c.name(), certify::to_string(c.verdict),
                   c.claimed ? "[claimed]" : "[not claimed]", c.summary.c_str(), decision.c_str());
     }
-    for (const auto& line : mesh.lines) std::printf("%s\n", line.c_str());
-    if (!fix_out.empty()) std::printf("fix-out            %s%s\n", mesh.fixed_mesh ? (fix_out + ": ").c_str() : "", mesh.fixed_note.c_str());
+    for (const auto& line : mesh.lines) std::printf("%s\n", line.c_str());  // (--fix-out's last)
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
     if (!report_path.empty()) std::printf("report             %s\n", report_path.c_str());
     certify::Verdict v = cert.overall();

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -383,6 +384,8 @@ void check_fix_out(const std::string& fix_out, const std::string& manifold, cons
     throw InputError(fix_out, 0, what + ": a surface in R^3, and " + manifold + " is a " +
                                      std::to_string(spec.intrinsic_dimension) + "-manifold in R^" +
                                      std::to_string(spec.ambient_dimension));
+  if (!std::filesystem::is_regular_file(complex))  // (a FIFO read here would be empty for the certifier)
+    throw InputError(fix_out, 0, what + ", which is read again for it: " + complex + " must be a regular file");
   const auto given = complex_format_from_name(complex_format).value_or(ComplexFormat::automatic);
   const auto format = mesh_format_of(read_file(complex), complex, given);
   if (!format)
@@ -395,12 +398,19 @@ void check_fix_out(const std::string& fix_out, const std::string& manifold, cons
   check_output_path(fix_out, "--fix-out", inputs, other_outputs);
 }
 
-MeshReport report_mesh(const std::string& text, const std::string& path, const std::string& format_read,
-                       bool restricted, const std::vector<std::vector<int>>& del_rm, const std::string& why_not,
-                       bool want_fixed) {
+MeshReport report_mesh(const nlohmann::json& inputs, bool restricted, const std::vector<std::vector<int>>& del_rm,
+                       const std::string& why_not, const std::string& fix_out,
+                       const std::function<std::string(std::string_view)>& sha256) {
   MeshReport r;
-  const auto format = complex_format_from_name(format_read);
-  if (!format || !mesh_format_of(text, path, *format)) return r;
+  const nlohmann::json& complex = inputs["complex"];
+  if (!complex.is_object() || inputs["manifold"]["intrinsic_dimension"] != 2) return r;
+  const auto format = complex_format_from_name(complex["read"]["format"].get<std::string>());
+  if (!format || !mesh_format_of("", "", *format)) return r;
+  const std::string path = complex["path"];
+  if (!std::filesystem::is_regular_file(path)) return r;  // (read once only: a FIFO, a device)
+  const std::string text = read_file(path);
+  if (sha256(text) != complex["sha256"].get<std::string>())
+    throw InputError(path, 0, "the file changed while it was certified (its SHA-256 is not the certificate's); nothing written");
   const MeshSource src = parse_mesh_source(text, path, *format);
   if (restricted && !del_rm.empty()) {
     MeshFeedback fb = non_delaunay_edges(src, del_rm);
@@ -417,15 +427,15 @@ MeshReport report_mesh(const std::string& text, const std::string& path, const s
     if (!note.empty()) r.lines.push_back("mesh " + note);
     r.lines.push_back("mesh no edge list: Del_RM(P) is not certified complete and pure (check 12: " + why_not + ")");
   }
-  if (!want_fixed) return r;
+  if (fix_out.empty()) return r;
   if (del_rm.empty()) {
-    r.fixed_note = "not written: Del_RM(P) is not certified complete and pure (check 12: " + why_not + ")";
+    r.lines.push_back("fix-out            not written: Del_RM(P) is not certified complete and pure (check 12: " + why_not + ")");
     return r;
   }
   r.fixed_mesh = format_fixed_mesh(src, del_rm);
-  r.fixed_note = "Del_RM(P), " + std::to_string(del_rm.size()) + " triangles, as " + format_name(*format) +
-                 (*format == ComplexFormat::stl ? "" : " with every vertex of " + path + " at its index") +
-                 "; certify it with --points and --complex that file";
+  r.lines.push_back("fix-out            " + fix_out + ": Del_RM(P), " + std::to_string(del_rm.size()) + " triangles, as " +
+                    format_name(*format) + (*format == ComplexFormat::stl ? "" : " with every vertex of " + path + " at its index") +
+                    "; certify it with --points and --complex that file");
   return r;
 }
 

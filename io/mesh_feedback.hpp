@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/complex.hpp"
@@ -81,19 +83,20 @@ void check_fix_out(const std::string& fix_out, const std::string& manifold, cons
                    const std::string& complex_format, const std::vector<std::string>& inputs,
                    const std::vector<std::string>& other_outputs);
 
-// What delcert-certify adds for a given surface mesh after the certificate is finished (m = 2; nothing for another
-// complex format). `text`: the complex file's bytes (those the certificate hashed); `format_read`: the
-// certificate's inputs.complex.read.format; `del_rm`: check 12's Del_RM(P) when certified complete and pure, else
-// empty, `why_not` then check 12's summary. The edges are listed for a complex claimed restricted (`restricted`)
-// that is not Del_RM(P); `fixed_mesh` (format_fixed_mesh) is made when `want_fixed` and Del_RM(P) is certified.
+// What delcert-certify adds for a given surface mesh after the certificate is finished: nothing unless the
+// certificate's `inputs` name a complex read as OFF, OBJ, PLY or STL, of a surface (m = 2). The file is read again
+// and must hash (`sha256`) to the certificate's inputs.complex.sha256 (else InputError: it changed during the run).
+// `del_rm`: check 12's Del_RM(P) when certified complete and pure, else empty, `why_not` then check 12's reason. The
+// edges are listed for a complex claimed restricted (`restricted`) that is not Del_RM(P). With `fix_out` (its path,
+// or empty) `fixed_mesh` (format_fixed_mesh) is made when Del_RM(P) is certified, and the last line says what
+// --fix-out did.
 struct MeshReport {
-  nlohmann::json json;                    // the certificate's "mesh_feedback", or null
+  nlohmann::json json;                    // the certificate's inputs.complex.mesh_feedback, or null
   std::vector<std::string> lines;         // stdout, after the checks
   std::optional<std::string> fixed_mesh;  // --fix-out's content
-  std::string fixed_note;                 // what --fix-out did, for its stdout line
 };
-MeshReport report_mesh(const std::string& text, const std::string& path, const std::string& format_read,
-                       bool restricted, const std::vector<std::vector<int>>& del_rm, const std::string& why_not,
-                       bool want_fixed);
+MeshReport report_mesh(const nlohmann::json& inputs, bool restricted, const std::vector<std::vector<int>>& del_rm,
+                       const std::string& why_not, const std::string& fix_out,
+                       const std::function<std::string(std::string_view)>& sha256);
 
 }  // namespace delcert::io
