@@ -99,6 +99,7 @@ struct Certificate {
   std::vector<CheckEntry> checks;
   exact::FilterStats filter;
   std::vector<std::pair<std::string, double>> times;  // seconds, wall clock
+  std::vector<std::vector<int>> restricted_complex;  // Del_RM(P) when check 12 proves it complete and pure; not written
 
   // Over the claimed checks: REFUTED if any is refuted, else UNDECIDED if any is undecided, else
   // CERTIFIED. REPORT entries and checks that are not claims never change it.

@@ -658,6 +658,7 @@ Certificate run_certify(const CertifyOptions& o) {
     restricted = check_restricted(*R, in.given, restricted_kind, m, recheck);
     // Del_RM(P) known completely rests on check 11's covering argument, whether or not a covering radius is claimed.
     restricted->details["assumptions"] = covering->details["assumptions"];
+    if (restricted->details["pure"] == true) for (const auto& s : R->simplices) C.restricted_complex.push_back(s.simplex);  // (--fix-out)
     equal = on_M ? check_tangential_equals_restricted(*stars, *R)
                  : tangent_space_undefined(CheckId::tangential_equals_restricted, sanity.off_manifold[0]);
   }

@@ -3,7 +3,7 @@
 //   delcert-certify --manifold SPEC --points POINTS [--complex COMPLEX] [--kind tangential|restricted|intrinsic]
 //                   [--complex-format auto|delcert|off|obj|ply|stl|gudhi] [--residual-tolerance T]
 //                   [--claims CLAIMS.json] [--out CERTIFICATE.json] [--threads T] [--no-times]
-//                   [--skip-restricted] [--report REPORT.html] [--halo H]   (MPI runs: docs/design.md §4.11)
+//                   [--skip-restricted] [--report REPORT.html] [--fix-out MESH] [--halo H]   (MPI: design.md §4.11)
 //
 // Prints one line per check ([claimed] or [not claimed]), the claims that decided the verdict and, last,
 // "verdict: CERTIFIED|REFUTED|UNDECIDED".
@@ -23,7 +23,9 @@
 #include "io/input_error.hpp"
 #include "io/progress.hpp"
 #include "io/spec.hpp"
+#include "certify/detail/sha256.hpp"
 #include "certify/detail/world.hpp"
+#include "io/mesh_feedback.hpp"  // presentation only: a mesh's edges in its file's numbering, --fix-out
 #include "report/html_report.hpp"  // presentation only: reads the finished certificate
 
 int main(int argc, char** argv) {
@@ -54,8 +56,9 @@ int main(int argc, char** argv) {
   app.add_option("--claims", o.claims, "claims.json (delcert-claims v2: star_radius, covering, sparsity, gamma0, power_protection; v1 read too)");
   app.add_flag("--skip-restricted", o.skip_restricted, "do not compute the restricted Voronoi diagram and Del_M (checks 11-15): the certificate is about Del_TM only");
   app.add_option("--out", out, "certificate JSON path (written atomically)");
-  std::string report_path;
+  std::string report_path, fix_out;
   app.add_option("--report", report_path, "also write the certificate as a self-contained HTML page (verdicts, margins, a 3D view of the complex with the witnesses); written atomically with --out");
+  app.add_option("--fix-out", fix_out, "surface meshes (--complex OFF, OBJ, PLY or STL; m = 2): when check 12 proves Del_RM(P) complete and pure, write its triangles to this file in the format and vertex numbering of --complex, to replace the mesh; written atomically with --out; not written otherwise (the exit status is the verdict's)");
   app.add_option("--threads", o.threads, "worker threads: 0 (the default) = one per hardware thread, or 1 to 256; the certificate does not depend on it")
       ->check(CLI::Range(0, 256))->capture_default_str();
   app.add_option("--halo", o.halo, "MPI runs: the distance around its own points up to which each rank but 0 holds the others; a point whose searches need more is UNDECIDED (default: automatic, widened as needed)")
@@ -95,12 +98,18 @@ int main(int argc, char** argv) {
     if (!report_path.empty() && !report::viewer_available())
       return std::cerr << "delcert-certify: " << report::viewer_missing_message() << "\n", 2;
     if (!report_path.empty()) io::check_output_path(report_path, "--report", {o.manifold, o.points, o.complex, o.claims}, {out});
+    if (!fix_out.empty()) io::check_fix_out(fix_out, o.manifold, o.complex, o.complex_format, {o.manifold, o.points, o.complex, o.claims}, {out, report_path});
     io::ProgressLine progress = io::ProgressLine::on_stderr();  // on a terminal only; cleared before any output
     o.progress = root ? &progress : nullptr;
     o.world = world.get();
     certify::Certificate cert = certify::run_certify(o);
     if (!root) return std::stoi(world->broadcast({}));  // rank 0's exit status, so that mpirun's is the verdict's
+    // A surface mesh: its non-Delaunay edges in its file's numbering, --fix-out's mesh (presentation, io/mesh_feedback.hpp).
+    const io::MeshReport mesh = io::report_mesh(cert.inputs, cert.parameters["kind"] == "restricted", cert.restricted_complex,
+                                                cert.checks[11].details.value("reason", cert.checks[11].summary), fix_out, certify::detail::Sha256::hex);
+    if (!mesh.json.is_null()) cert.inputs["complex"]["mesh_feedback"] = mesh.json;
     std::vector<std::pair<std::string, std::string>> files;
+    if (mesh.fixed_mesh) files.emplace_back(fix_out, *mesh.fixed_mesh);
     if (!out.empty()) files.emplace_back(out, cert.to_text(!no_times));
     if (!report_path.empty())
       files.emplace_back(report_path, report::format_html_report(cert.to_json(!no_times), o.points, o.complex));
@@ -113,6 +122,7 @@ int main(int argc, char** argv) {
       std::printf("check %-2d %-28s %-10s %-13s %s%s\n", c.number(), c.name(), certify::to_string(c.verdict),
                   c.claimed ? "[claimed]" : "[not claimed]", c.summary.c_str(), decision.c_str());
     }
+    for (const auto& line : mesh.lines) std::printf("%s\n", line.c_str());  // (--fix-out's last)
     if (!out.empty()) std::printf("certificate        %s\n", out.c_str());
     if (!report_path.empty()) std::printf("report             %s\n", report_path.c_str());
     certify::Verdict v = cert.overall();

@@ -180,6 +180,7 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   std::vector<long> face_lines;  // the line of each face, where known (ASCII); else empty
+  std::vector<long> vertex_lines;  // the line of each vertex of the file (STL: each corner), where known
   std::size_t stl_copies = 0;    // vertex copies CGAL's STL reader merged
   bool ok = false;
   std::istringstream in(text, std::ios::in | std::ios::binary);
@@ -189,6 +190,7 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
       case MeshFormat::obj:
         ok = CGAL::IO::read_OBJ(in, points, faces, quiet);
         face_lines = lines_starting_with(text, "f");
+        vertex_lines = lines_starting_with(text, "v");
         break;
       case MeshFormat::ply: {
         const PlyHeader h = scan_ply_header(text, file);
@@ -196,6 +198,8 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
         if (h.ascii && h.elements.size() >= 2 && h.elements[0].first == "vertex" && h.elements[1].first == "face")
           for (std::size_t k = 0; k < h.elements[1].second; ++k)
             face_lines.push_back(h.end_header_line + static_cast<long>(h.elements[0].second + k) + 1);
+        if (h.ascii && !h.elements.empty() && h.elements[0].first == "vertex")
+          for (std::size_t k = 0; k < h.elements[0].second; ++k) vertex_lines.push_back(h.end_header_line + static_cast<long>(k) + 1);
         break;
       }
       case MeshFormat::stl: {
@@ -204,7 +208,7 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
         for (const auto& t : triangles) faces.push_back({t[0], t[1], t[2]});
         // CGAL's STL reader has already merged the 3 corners stored per facet into shared vertices.
         if (3 * faces.size() > points.size()) stl_copies = 3 * faces.size() - points.size();
-        if (first_word(text) == "solid") face_lines = lines_starting_with(text, "facet");
+        if (first_word(text) == "solid") face_lines = lines_starting_with(text, "facet"), vertex_lines = lines_starting_with(text, "vertex");
         break;
       }
     }
@@ -262,6 +266,22 @@ Mesh parse_mesh(const std::string& text, const std::string& file, MeshFormat for
                            (mesh.merged_vertices ? " (after merging identical coordinates)" : std::string()));
     mesh.triangles.simplices.push_back(std::move(t));
   }
+  // The file's own vertices. STL has none: CGAL's reader gave each facet's corners as indices into the points it
+  // merged, so corner k of facet f is file vertex 3f + k.
+  if (format == MeshFormat::stl) {
+    for (const auto& face : faces)
+      for (std::size_t v : face) {
+        mesh.file_vertices.push_back({points[v].x(), points[v].y(), points[v].z()});
+        mesh.file_to_vertex.push_back(new_index[v]);
+      }
+    for (std::size_t f = 0; f < faces.size(); ++f) mesh.file_faces.push_back({3 * f, 3 * f + 1, 3 * f + 2});
+  } else {
+    for (const auto& p : points) mesh.file_vertices.push_back({p.x(), p.y(), p.z()});
+    mesh.file_to_vertex = new_index;
+    for (const auto& face : faces) mesh.file_faces.push_back({face[0], face[1], face[2]});
+  }
+  if (vertex_lines.size() != mesh.file_vertices.size()) vertex_lines.assign(mesh.file_vertices.size(), 0);
+  mesh.file_vertex_lines = std::move(vertex_lines);
   return mesh;
 }
 

@@ -11,6 +11,7 @@
 // Written: PLY (ASCII, double coordinates, shortest round-trip decimals) by format_ply.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -28,6 +29,14 @@ struct Mesh {
   PointSet points;            // dimension 3
   Complex triangles;          // on points.size() vertices, every simplex of size 3
   std::size_t merged_vertices = 0;  // vertex copies merged into an earlier identical vertex
+  // The file as written, before any merging (for messages in the user's terms, io/mesh_feedback.hpp): its vertices
+  // in file order (STL, which has no vertex list: every facet corner, 3 per facet, corner k of facet f at 3f + k),
+  // the line of each in an ASCII file (0 where unknown), its triangles on them, and the vertex of `points` each
+  // became. The same bytes as `points` and `triangles`, so file_to_vertex[file_faces[f][k]] is triangles' f-th.
+  std::vector<std::array<double, 3>> file_vertices;
+  std::vector<long> file_vertex_lines;
+  std::vector<std::array<std::size_t, 3>> file_faces;
+  std::vector<int> file_to_vertex;
 };
 
 // The mesh format of a file, from its content (a first line "ply", a first word "solid") or,

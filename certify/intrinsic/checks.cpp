@@ -65,10 +65,10 @@ CheckEntry check_intrinsic(const IntrinsicDelaunay& D, const std::optional<io::C
       im.claim = {{"kind", "intrinsic"}, {"meaning", "the complex is the intrinsic Delaunay complex Del_M(P)"}};
       im.details["missing_simplices"] = missing, im.details["extra_simplices"] = extra;
     }
-    im.summary = std::to_string(D.simplices.size()) + " m-simplices of Del_M(P) certified" +
+    im.summary = "Del_M of the points: " + std::to_string(D.simplices.size()) + " m-simplices certified" +
                  (D.complete ? " (all of them)" : " (maybe not all)") +
-                 (intrinsic_kind && given ? "; " + std::to_string(missing) + " missing from the complex, " +
-                                                std::to_string(extra) + " not in Del_M"
+                 (intrinsic_kind && given ? "; the given complex is not it: " + std::to_string(missing) + " simplices of Del_M missing from it, " +
+                                                std::to_string(extra) + " of its simplices not in Del_M"
                                           : "");
   }
   return im;

@@ -389,15 +389,15 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
     rd.details["missing_simplices"] = missing, rd.details["extra_simplices"] = extra;
     if (R.covering_certified) rd.details["m_simplices_equal_to_the_complex"] = tops_equal;
   }
-  rd.summary = std::to_string(R.simplices.size()) + " m-simplices of Del_RM(P) certified" +
+  rd.summary = "Del_RM of the points: " + std::to_string(R.simplices.size()) + " m-simplices certified" +
                (R.covering_certified ? " (all of them)" : " (maybe not all)") +
-               (tops_equal ? ", exactly the complex's" : "") +
+               (tops_equal ? ", exactly the given complex's" : given && !claimed ? "; the given complex is checked against another complex (check 3 or 14), not this one" : "") +
                (impure_known ? "; Del_RM(P) is not pure, so it triangulates nothing: " + std::to_string(R.lower_faces.size()) +
                                    " simplices of lower dimension in no m-simplex"
                 : unresolved || !R.lower_faces.empty() ? "; purity not proven" : "") +
                (claimed && given && !tops_equal
-                    ? "; " + std::to_string(missing) + " missing from the complex, " + std::to_string(extra) +
-                          " not in Del_RM" + (R.covering_certified ? "" : " (not proven absent)")
+                    ? (missing || R.covering_certified ? "; the given complex is not it: " + std::to_string(missing) + " simplices of Del_RM missing from it, "
+                                                       : "; the given complex is not proven to be it: ") + std::to_string(extra) + " of its simplices " + (R.covering_certified ? "not in Del_RM" : "not proven in Del_RM")
                     : "");
   return rd;
 }
@@ -406,10 +406,11 @@ CheckEntry check_restricted(const RestrictedDelaunay& R, const std::optional<io:
 CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedDelaunay& R) {
   CheckEntry eq(CheckId::tangential_equals_restricted);
   std::set<Simplex> tm;
-  long unknown_stars = 0;
+  long unknown_stars = 0, given_differs = 0;  // (stars where the given complex, if any, is not Del_TM)
   for (const auto& r : st.reports) {
     if (r.state == StarReport::State::proven) {  // (claimed_verified: star holds the claimed cells)
       for (auto& s : r.simplices()) tm.insert(std::move(s));
+      given_differs += st.verify && !r.claimed_verified;
     } else {
       ++unknown_stars;
     }
@@ -440,8 +441,9 @@ CheckEntry check_tangential_equals_restricted(const Stars& st, const RestrictedD
   }
   eq.details = {{"tangential_m_simplices", tm.size()}, {"restricted_m_simplices", rm.size()},
                 {"only_in_restricted", only_rm}, {"only_in_tangential", only_tm}, {"stars_undetermined", unknown_stars}};
-  eq.summary = equality(eq.verdict, "Del_TM(P)", "Del_RM(P)") + " (" + std::to_string(tm.size()) + " and " + std::to_string(rm.size()) + " m-simplices; " +
-               std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) + " only restricted)";
+  eq.summary = equality(eq.verdict, "Del_TM of the points", "Del_RM of the points") + " (" + std::to_string(tm.size()) + " and " +
+               std::to_string(rm.size()) + " m-simplices; " + std::to_string(only_tm) + " only tangential, " + std::to_string(only_rm) +
+               " only restricted)" + (given_differs ? "; the given complex is not Del_TM: " + std::to_string(given_differs) + " of its stars differ (check 3)" : "");
   return eq;
 }
 

@@ -94,15 +94,7 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
       if (r[i].hi <= tol.lo) continue;  // |F_i(p)| <= tolerance
       if (!F) F = system.evaluate_exact(p);
       const mpq_class f = abs((*F)[i]);
-      if (f > spec.residual_tolerance && !accept_off_manifold)
-        throw io::InputError(file, line_of(idx),
-                             "point " + std::to_string(idx) + " is not on the manifold: |F_" + std::to_string(i + 1) +
-                                 "(p)| is about " + num(f.get_d()) + " > residual_tolerance " +
-                                 exact::rational_to_string(spec.residual_tolerance) +
-                                 " (exactly), and the tangential Delaunay complex needs T_p M; project the point onto "
-                                 "M, raise residual_tolerance in the spec (or pass --residual-tolerance), or, for a complex claimed to be restricted "
-                                 "Delaunay (a mesher's output), pass it with --complex and --kind restricted");
-      if (f > spec.residual_tolerance) off[idx] = 1;
+      if (f > spec.residual_tolerance) off[idx] = 1;  // (refused below unless accepted, with the distance to M)
     }
     if (spec.selector && sgn(spec.selector->evaluate(std::span<const mpq_class>(exact::to_rational(p)))) <= 0)
       throw io::InputError(file, line_of(idx),
@@ -158,15 +150,23 @@ SanityResult check_input_sanity(const io::ManifoldSpec& spec, const io::PointSet
     if (distance[i] > distance[far]) far = i;
   const double maxdist = n ? distance[far] : 0.0;
   R.distance_to_M = distance;
+  // Points off M, said first and with how far (issue 41: a mesh of the wrong radius), before any other check.
+  const std::string off_M = R.off_manifold.empty() ? "" : "the points are not on M: " + std::to_string(R.off_manifold.size()) + " of " +
+      std::to_string(n) + " point(s) off M beyond the residual tolerance " + exact::rational_to_string(spec.residual_tolerance) +
+      " (exactly; the first: point " + std::to_string(R.off_manifold[0]) + ", max |F_i(p)| about " + num(worst[R.off_manifold[0]].hi) +
+      "); every point is within " + num(maxdist) + " of M (certified upper bound; the largest: point " + std::to_string(far) + ")";
+  if (!R.off_manifold.empty() && !accept_off_manifold)
+    throw io::InputError(file, line_of(R.off_manifold[0]), off_M + ". The tangential Delaunay complex needs T_p M: project the "
+                         "points onto M, raise residual_tolerance in the spec (or pass --residual-tolerance), or, for a "
+                         "complex claimed to be restricted Delaunay (a mesher's output), pass it with --complex and --kind restricted");
   e.summary = std::to_string(n) + " distinct points in R^" + std::to_string(N) + ", max |F_i(p)| <= " +
               num(exact::enclose(maxres).hi) + " (tolerance " + exact::rational_to_string(spec.residual_tolerance) +
               "), every point within " + num(maxdist) + " of M (certified" +
               (maxdist > 0 ? "; the farthest: point " + std::to_string(far) : std::string()) + "), full-rank Jacobian there";
   if (!R.off_manifold.empty())
-    e.summary += "; " + std::to_string(R.off_manifold.size()) + " point(s) off M beyond the tolerance (first: point " +
-                 std::to_string(R.off_manifold[0]) +
-                 "), accepted for the restricted Delaunay complex: checks that need T_p M are not computed; checks 11-12 look "
-                 "for a point's restricted Voronoi cell out to its distance to M and beyond";
+    e.summary = off_M + "; max |F_i(p)| <= " + num(exact::enclose(maxres).hi) + ", full-rank Jacobian there; accepted for the "
+                "restricted Delaunay complex: checks that need T_p M are not computed; checks 11-12 look for a point's "
+                "restricted Voronoi cell out to its distance to M and beyond";
   e.margin = {{"max_residual", {{"certified_upper_bound", num(exact::enclose(maxres).hi)},
                                 {"enclosure", enclosure_json(exact::enclose(maxres))}}},
               {"at_point", n ? json(arg) : json(nullptr)},

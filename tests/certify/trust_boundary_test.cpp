@@ -33,6 +33,10 @@ const std::vector<std::string> kAllowedInCertify = {"certify/",       "exact/", 
                                                     // the progress line on a terminal (presentation, no
                                                     // verdict: writes to stderr only, nothing read back)
                                                     "io/progress.hpp",
+                                                    // main.cpp only: a mesh's non-Delaunay edges in its file's
+                                                    // numbering and --fix-out's mesh (presentation, after the
+                                                    // certificate is finished; no verdict)
+                                                    "io/mesh_feedback.hpp",
                                                     "topology/"};
 const std::vector<std::string> kAllowedInIo = {"io/", "exact/"};
 // topology/ includes itself and Regina only: nothing of core/, certify/, exact/, io/, no CGAL.

@@ -113,7 +113,11 @@ TEST(Sanity, PointsOffMAreListedWhenAccepted) {
     check_input_sanity(spec, P, {3, 4, 5, 6, 7, 8}, "points.txt", false, 1);
     ADD_FAILURE() << "a point off M was accepted";
   } catch (const io::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("points.txt:3: point 0 is not on the manifold"), std::string::npos) << e.what();
+    // Said at once, with how many, how far (the largest certified distance bound and its point) and what to do.
+    const std::string what = e.what();
+    EXPECT_EQ(what.find("points.txt:3: the points are not on M: 2 of 6 point(s) off M beyond the residual tolerance"), 0u) << what;
+    EXPECT_NE(what.find("of M (certified upper bound; the largest: point 0)"), std::string::npos) << what;
+    EXPECT_NE(what.find("--kind restricted"), std::string::npos) << what;
   }
   const SanityResult r = check_input_sanity(spec, P, {}, "points.txt", true, 2);
   EXPECT_EQ(r.off_manifold, (std::vector<int>{0, 4}));
@@ -121,7 +125,8 @@ TEST(Sanity, PointsOffMAreListedWhenAccepted) {
   EXPECT_EQ(r.entry.details["first_off_manifold_point"], 0);
   EXPECT_GE(upper_bound(r.entry), 1e-4);  // |p| - 1 at point 0
   EXPECT_LE(upper_bound(r.entry), 1e-4 + 1e-12);
-  EXPECT_NE(r.entry.summary.find("2 point(s) off M"), std::string::npos) << r.entry.summary;
+  EXPECT_EQ(r.entry.summary.find("the points are not on M: 2 of 6 point(s) off M"), 0u) << r.entry.summary;
+  EXPECT_NE(r.entry.summary.find("(certified upper bound; the largest: point 0)"), std::string::npos) << r.entry.summary;
   // Within the tolerance nothing is listed.
   EXPECT_TRUE(check_input_sanity(spec, make_points(3, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), {}, "p", true, 1).off_manifold.empty());
 }
