@@ -12,12 +12,16 @@
 #
 # Adds the ctest test <test>, which runs delcert-certify on the inputs and passes only when its exit
 # status is 0 and its last line is "verdict: CERTIFIED": REFUTED (exit status 1), UNDECIDED (3) and
-# bad input (2) fail the test. Relative paths are relative to the calling CMakeLists.txt's folder.
+# bad input (2) fail the test; a failing test's output lists each REFUTED or UNDECIDED check of the
+# certificate with its first witnesses (the simplex or vertex indices and why) or its reason.
+# Relative paths are relative to the calling CMakeLists.txt's folder.
 # The certificate is written to <build folder of the caller>/<test>.certificate.json, whatever the
 # verdict, so that a failing CI run keeps it. KIND, THREADS and SKIP_RESTRICTED are delcert-certify's
 # --kind, --threads and --skip-restricted (`delcert-certify --help`); without THREADS it uses every
 # core. Set other test properties (TIMEOUT, LABELS, ...) with set_tests_properties(<test> ...).
 # Call enable_testing() (or include(CTest)) in the top-level CMakeLists.txt for ctest to see it.
+# No language is needed: a project(x LANGUAGES NONE) can add these tests. delcert_EXAMPLES_DIR (set by
+# the package config) holds example inputs: octahedron.off, octahedron.complex, octahedron-claims.json.
 if(CMAKE_VERSION VERSION_LESS 3.20)
   message(FATAL_ERROR "delcert_add_certificate_test needs CMake 3.20 or later (this is ${CMAKE_VERSION})")
 endif()

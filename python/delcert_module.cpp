@@ -4,7 +4,9 @@
 //   delcert.tangential(manifold, points, threads=0)                -> int64 array (k, m+1)
 //   delcert.refine(manifold, points=None, eps=None, ...)           -> dict: points, complex, claims, report, converged
 //                                                                     (+ eps_per_point with sizing='curvature')
-//   delcert.certify(manifold, points, complex=None, kind=None, claims=None, ...) -> the certificate as a dict
+//   delcert.certify(manifold, points, complex=None, kind=None, claims=None, ...,
+//                   complex_format='auto', residual_tolerance=None, out=None, report=None)
+//                                                                  -> the certificate as a dict
 //
 // Each function makes the library calls its command makes (core/app/*_command.cpp,
 // certify/main.cpp), on the same readers: a points array is turned into the delcert-points text
@@ -50,6 +52,7 @@
 #include "io/input_error.hpp"
 #include "io/points.hpp"
 #include "io/spec.hpp"
+#include "report/html_report.hpp"  // certify(report=...): presentation only, as in delcert-certify
 
 namespace py = pybind11;
 using namespace delcert;
@@ -494,12 +497,33 @@ std::string complex_text(const py::handle& obj, std::size_t num_vertices) {
   return io::format_complex(c);
 }
 
+// The values of delcert-certify --complex-format.
+constexpr const char* kComplexFormats[] = {"auto", "delcert", "off", "obj", "ply", "stl", "gudhi"};
+
 py::object py_certify(const py::object& manifold_arg, const py::object& points_arg, const py::object& complex_arg,
                            const py::object& kind_arg, const py::object& claims_arg, int threads, bool skip_restricted,
-                           bool times) {
+                           bool times, const std::string& complex_format, const py::object& residual_tolerance_arg,
+                           const py::object& out_arg, const py::object& report_arg) {
   check_threads(threads);
   certify::CertifyOptions o;
   o.manifold = path_text(manifold_arg);
+  // --complex-format: one of the command's values (run_certify itself would read an unknown name as auto).
+  if (std::find_if(std::begin(kComplexFormats), std::end(kComplexFormats),
+                   [&](const char* f) { return complex_format == f; }) == std::end(kComplexFormats))
+    throw BindingInputError("complex_format: '" + complex_format +
+                            "' is not one of auto, delcert, off, obj, ply, stl, gudhi");
+  if (complex_format != "auto" && complex_arg.is_none())
+    throw BindingInputError("complex_format needs complex (it says how to read the given complex file)");
+  if (complex_format != "auto" && complex_format != "delcert" && !complex_arg.is_none() && !is_path(complex_arg))
+    throw BindingInputError("complex_format: '" + complex_format +
+                            "' names the format of a complex file; an array or list of simplices is given as it is "
+                            "(leave complex_format out, or give 'delcert')");
+  o.complex_format = complex_format;
+  // --residual-tolerance: exact, as on the command line (a float is written as its repr); it is
+  // read, and refused with the command's message, by run_certify.
+  if (!residual_tolerance_arg.is_none()) o.residual_tolerance = rational_text(residual_tolerance_arg, "--residual-tolerance");
+  const std::string out = out_arg.is_none() ? std::string() : path_text(out_arg);
+  const std::string report_path = report_arg.is_none() ? std::string() : path_text(report_arg);
   o.threads = threads == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : threads;
   o.skip_restricted = skip_restricted;
   if (!kind_arg.is_none()) {
@@ -561,12 +585,30 @@ py::object py_certify(const py::object& manifold_arg, const py::object& points_a
                                 py::module_::import("json").attr("dumps")(claims_arg, py::arg("indent") = 2).cast<std::string>() + "\n");
     }
   }
+  // The outputs, as delcert-certify --out and --report: checked before any work (not an input, a
+  // writable folder, not each other), then written together or not at all, after the certificate.
+  translating(prefix, arrays, [&] {
+    const std::vector<std::string> inputs{o.manifold, o.points, o.complex, o.claims};
+    if (!out.empty()) io::check_output_path(out, "--out", inputs);
+    if (!report_path.empty() && !report::viewer_available())
+      throw BindingInputError(report::viewer_missing_message());  // as delcert-certify --report
+    if (!report_path.empty()) io::check_output_path(report_path, "--report", inputs, {out});
+    return 0;
+  });
   std::string text = translating(prefix, arrays, [&] {
     py::gil_scoped_release release;
-    return certify::run_certify(o).to_text(times);
+    std::string t = certify::run_certify(o).to_text(times);
+    // The certificate names its inputs: a temporary file is named as its argument ("points", ...).
+    for (std::size_t at; (at = t.find(prefix)) != std::string::npos;) t.erase(at, prefix.size());
+    std::vector<std::pair<std::string, std::string>> files;
+    if (!out.empty()) files.emplace_back(out, t);  // the bytes of the returned certificate
+    // The page reads the points and the complex from the files run_certify read (the temporary
+    // copies of arrays are still there).
+    if (!report_path.empty())
+      files.emplace_back(report_path, report::format_html_report(nlohmann::json::parse(t), o.points, o.complex));
+    io::write_files_atomically(files);
+    return t;
   });
-  // The certificate names its inputs: a temporary file is named as its argument ("points", ...).
-  for (std::size_t at; (at = text.find(prefix)) != std::string::npos;) text.erase(at, prefix.size());
   return json_to_python(text);
 }
 
@@ -622,10 +664,28 @@ PYBIND11_MODULE(delcert, m) {
 
   m.def("certify", &py_certify, py::arg("manifold"), py::arg("points"), py::arg("complex") = py::none(),
         py::arg("kind") = py::none(), py::arg("claims") = py::none(), py::arg("threads") = 0,
-        py::arg("skip_restricted") = false, py::arg("times") = true,
+        py::arg("skip_restricted") = false, py::arg("times") = true, py::arg("complex_format") = "auto",
+        py::arg("residual_tolerance") = py::none(), py::arg("out") = py::none(), py::arg("report") = py::none(),
         "The independent certificate (`delcert-certify`), as a dict: certificate['verdict'] is\n"
-        "'CERTIFIED', 'REFUTED' or 'UNDECIDED'. points: array (n, N) or file path; complex: int array\n"
-        "(k, m+1), list of simplices or file path (None: audit the points' own Del_TM); claims: dict\n"
-        "or claims.json path; kind: 'tangential', 'restricted' or 'intrinsic'; times=False leaves the\n"
-        "wall-clock times out.");
+        "'CERTIFIED', 'REFUTED' or 'UNDECIDED'. Each option is the command's flag of the same name:\n"
+        "  points              array (n, N) or file path (--points)\n"
+        "  complex             int array (k, m+1), list of simplices or file path (--complex; None: audit\n"
+        "                      the points' own Del_TM)\n"
+        "  kind                'tangential', 'restricted' or 'intrinsic' (--kind; needs complex)\n"
+        "  complex_format      how to read a complex file: 'auto' (detected, the default), 'delcert', 'off',\n"
+        "                      'obj', 'ply', 'stl' or 'gudhi' (--complex-format; needs complex; an array or\n"
+        "                      list is given as it is: 'auto' or 'delcert' only)\n"
+        "  residual_tolerance  largest |F_i(p)| accepted for an input point, replacing the spec's\n"
+        "                      (--residual-tolerance): a str read exactly ('1e-6', '1/1000000'), an int, or a\n"
+        "                      float (its repr); recorded in the certificate's inputs.residual_tolerance\n"
+        "  claims              dict or claims.json path (--claims)\n"
+        "  threads             0 (one per hardware thread) or 1 to 256 (--threads)\n"
+        "  skip_restricted     True: no checks 11-15 (--skip-restricted)\n"
+        "  times               False leaves the wall-clock times out (--no-times)\n"
+        "  out                 also write the certificate JSON to this path, the bytes of the returned\n"
+        "                      dict (--out)\n"
+        "  report              also write the certificate as a self-contained HTML page (--report)\n"
+        "out and report are checked before any work (not an input, in an existing folder, not each\n"
+        "other) and written together, atomically, or not at all: bad input raises InputError and\n"
+        "writes nothing. Whatever the verdict, the certificate is returned (and written).");
 }

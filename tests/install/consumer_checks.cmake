@@ -3,7 +3,8 @@
 # target links on its own), then:
 #   * its tests not named must_fail_* pass (a certificate test with every option among them);
 #   * each must_fail_* test fails, for the reason it is there (REFUTED, UNDECIDED, bad input),
-#     and the certificate is kept when delcert-certify wrote one;
+#     and the certificate is kept when delcert-certify wrote one; a REFUTED one's output lists the
+#     failed checks with their witnesses (the simplex indices), an UNDECIDED one's the reason;
 #   * the test command fails when the exit status is 0 but the last line is not
 #     "verdict: CERTIFIED", and when the last line is but the exit status is not 0 (fake certifiers);
 #   * delcert_add_certificate_test() refuses a missing required argument, naming it.
@@ -31,12 +32,16 @@ function(delcert_expect_failure what reason)
     message(FATAL_ERROR "${what} failed, but not with '${reason}'. Its output:\n${output}")
   endif()
   message("${what} fails as it must: ${reason}")
+  set(failure_output "${output}" PARENT_SCOPE)
 endfunction()
 
+# name | why it fails | the certificate's verdict (none: no certificate) | lines its output must hold
+# (the runner's list of the failed checks: the witness simplex of the triangle left out, of the
+# first thin face; the reason of an undecided check; none on bad input).
 set(expected
-    "must_fail_refuted_complex|REFUTED (exit status 1)|REFUTED"
-    "must_fail_refuted_claims|REFUTED (exit status 1)|REFUTED"
-    "must_fail_undecided|UNDECIDED (exit status 3)|UNDECIDED"
+    "must_fail_refuted_complex|REFUTED (exit status 1)|REFUTED|check 3 stars REFUTED: 3 of 6 stars verified|  witness missing_simplex simplex=[0,3,5] at_vertex=0: its ball"
+    "must_fail_refuted_claims|REFUTED (exit status 1)|REFUTED|check 5 thickness REFUTED: 8 face(s) thinner|  witness thin_face simplex=[0,2,4] dimension=2"
+    "must_fail_undecided|UNDECIDED (exit status 3)|UNDECIDED|check 11 covering UNDECIDED: not computed: the certified restricted Voronoi diagram is built for m <= 3"
     "must_fail_bad_input|bad input or usage (exit status 2)|")
 foreach(case ${expected})
   string(REPLACE "|" ";" case "${case}")
@@ -44,6 +49,23 @@ foreach(case ${expected})
   list(GET case 1 reason)
   delcert_expect_failure("test ${name}" "certificate test ${name} is not CERTIFIED: ${reason}"
                          ${CTEST} --test-dir ${build} --output-on-failure -R ^${name}$)
+  list(LENGTH case fields)
+  set(lines "")
+  if(fields GREATER 3)
+    list(SUBLIST case 3 -1 lines)
+  endif()
+  string(FIND "${failure_output}" "the checks that failed, with their witnesses" listed)
+  if(lines AND listed EQUAL -1)
+    message(FATAL_ERROR "${name}: its output does not list the failed checks:\n${failure_output}")
+  elseif(NOT lines AND NOT listed EQUAL -1)
+    message(FATAL_ERROR "${name}: failed checks listed without a certificate:\n${failure_output}")
+  endif()
+  foreach(line ${lines})
+    string(FIND "${failure_output}" "\n${line}" found)
+    if(found EQUAL -1)
+      message(FATAL_ERROR "${name}: its output has no line '${line}':\n${failure_output}")
+    endif()
+  endforeach()
   set(certificate ${build}/${name}.certificate.json)
   list(GET case 2 certificate_verdict)
   if(certificate_verdict STREQUAL "")

@@ -12,7 +12,10 @@ foreach(file ${BINDIR}/delcert ${BINDIR}/delcert-certify
              ${INCLUDEDIR}/delcert/certify/certify.hpp
              ${LIBDIR}/cmake/delcert/delcertConfig.cmake ${LIBDIR}/cmake/delcert/delcertConfigVersion.cmake
              ${LIBDIR}/cmake/delcert/delcertCertificateTest.cmake
-             ${LIBDIR}/cmake/delcert/delcert-run-certificate-test.cmake)
+             ${LIBDIR}/cmake/delcert/delcert-run-certificate-test.cmake
+             ${LIBDIR}/cmake/delcert/delcertTargets.cmake ${LIBDIR}/cmake/delcert/delcertProgramTargets.cmake
+             ${DATADIR}/delcert/examples/octahedron.off ${DATADIR}/delcert/examples/octahedron.complex
+             ${DATADIR}/delcert/examples/octahedron-claims.json)
   if(NOT EXISTS ${PREFIX}/${file})
     message(FATAL_ERROR "cmake --install did not install ${file}")
   endif()
