@@ -216,8 +216,11 @@ TEST(TrustBoundary, CertifySourcesRespectTheBoundary) {
   // declarations (~400 lines): 12141, so 12200. Issue 40 then added Del_M on a general M (intrinsic/general.*,
   // intrinsic/graph_ball.*: the graph balls, the degree argument, ~1060 lines of which ~250 the proofs; the window
   // in rvd.*, ~35) and the declared reach refuted by Federer's inequality (tangential/reach_check.*, ~205): 13524,
-  // so 13600.
-  EXPECT_LT(check_directory("certify", kAllowedInCertify), 13600) << "certify/ should stay small enough to read whole";
+  // so 13600. Issue 41's mesh feedback hooks (--fix-out, the checks' wording; the work itself is in io/, ~14) and
+  // issue 40's tighter bounds for the general engine (the curvature leaves refined where the bound is largest, the
+  // centred Jacobian, the 2x2 eigenvalue bound, the local curvature profile and its proof, the failing cells'
+  // places, ~160): 13757, so 13800.
+  EXPECT_LT(check_directory("certify", kAllowedInCertify), 13800) << "certify/ should stay small enough to read whole";
 }
 
 // One concept per file, each readable at a sitting (issue 40): no source of certify/ or exact/ has 800 lines or
