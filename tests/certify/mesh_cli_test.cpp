@@ -75,13 +75,19 @@ std::string edge_text(int u, int v) {  // OBJ numbering, smaller first
   return std::to_string(std::min(u, v) + 1) + "-" + std::to_string(std::max(u, v) + 1);
 }
 
+// The certifier on a mesh file with --out and --fix-out (the mesh, fixed mesh and certificate paths given).
+RunResult certify_with_fix_out(const TempDir& dir, const std::string& mesh, const std::string& fixed, const std::string& out) {
+  return run(binary() + kSphere + " --points " + q(mesh) + " --complex " + q(mesh) + " --out " + q(out) + " --fix-out " +
+                 q(fixed),
+             dir);
+}
+
 TEST(MeshCli, ARefutedObjNamesTheFlippedEdgeAndItsFlipAndFixOutCertifies) {
   TempDir dir("mesh-cli-obj");
   const Flipped F = flip_first_edge();
   const std::string mesh = dir.file("flipped.obj"), fixed = dir.file("fixed.obj"), out = dir.file("cert.json");
   write_text(mesh, obj(F.points, F.faces));
-  RunResult r = run(binary() + kSphere + " --points " + q(mesh) + " --complex " + q(mesh) + " --out " + q(out) +
-                        " --fix-out " + q(fixed), dir);
+  RunResult r = certify_with_fix_out(dir, mesh, fixed, out);
   ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(last_line(r.out), "verdict: REFUTED");
   // The edge the flip made, in the OBJ's numbering and with its coordinates; its flip is the edge it replaced.
@@ -123,8 +129,7 @@ TEST(MeshCli, AnStlNamesVerticesByFacetCornerAndSaysHowTheyWereMerged) {
   const Flipped F = flip_first_edge();
   const std::string mesh = dir.file("flipped.stl"), fixed = dir.file("fixed.stl"), out = dir.file("cert.json");
   write_text(mesh, stl(F.points, F.faces));
-  RunResult r = run(binary() + kSphere + " --points " + q(mesh) + " --complex " + q(mesh) + " --out " + q(out) +
-                        " --fix-out " + q(fixed), dir);
+  RunResult r = certify_with_fix_out(dir, mesh, fixed, out);
   ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("mesh STL: 1314 corner entries (3 per facet) merged into 221 vertices by exact coordinates"),
             std::string::npos) << r.out;
