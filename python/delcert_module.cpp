@@ -5,7 +5,7 @@
 //   delcert.refine(manifold, points=None, eps=None, ...)           -> dict: points, complex, claims, report, converged
 //                                                                     (+ eps_per_point with sizing='curvature')
 //   delcert.certify(manifold, points, complex=None, kind=None, claims=None, ...,
-//                   complex_format='auto', residual_tolerance=None, out=None, report=None)
+//                   complex_format='auto', residual_tolerance=None, out=None, report=None, fix_out=None)
 //                                                                  -> the certificate as a dict
 //
 // Each function makes the library calls its command makes (core/app/*_command.cpp,
@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "certify/certify.hpp"
+#include "certify/detail/sha256.hpp"
 #include "core/manifold/manifold.hpp"
 #include "core/manifold/on_manifold.hpp"
 #include "core/refine/refine_output.hpp"
@@ -50,6 +51,7 @@
 #include "io/atomic_file.hpp"
 #include "io/complex.hpp"
 #include "io/input_error.hpp"
+#include "io/mesh_feedback.hpp"  // certify(fix_out=...): a mesh's edges in its file's numbering, as delcert-certify
 #include "io/points.hpp"
 #include "io/spec.hpp"
 #include "report/html_report.hpp"  // certify(report=...): presentation only, as in delcert-certify
@@ -503,7 +505,7 @@ constexpr const char* kComplexFormats[] = {"auto", "delcert", "off", "obj", "ply
 py::object py_certify(const py::object& manifold_arg, const py::object& points_arg, const py::object& complex_arg,
                            const py::object& kind_arg, const py::object& claims_arg, int threads, bool skip_restricted,
                            bool times, const std::string& complex_format, const py::object& residual_tolerance_arg,
-                           const py::object& out_arg, const py::object& report_arg) {
+                           const py::object& out_arg, const py::object& report_arg, const py::object& fix_out_arg) {
   check_threads(threads);
   certify::CertifyOptions o;
   o.manifold = path_text(manifold_arg);
@@ -524,6 +526,10 @@ py::object py_certify(const py::object& manifold_arg, const py::object& points_a
   if (!residual_tolerance_arg.is_none()) o.residual_tolerance = rational_text(residual_tolerance_arg, "--residual-tolerance");
   const std::string out = out_arg.is_none() ? std::string() : path_text(out_arg);
   const std::string report_path = report_arg.is_none() ? std::string() : path_text(report_arg);
+  const std::string fix_out = fix_out_arg.is_none() ? std::string() : path_text(fix_out_arg);
+  if (!fix_out.empty() && !is_path(complex_arg))
+    throw BindingInputError("fix_out needs complex given as a surface mesh file (OFF, OBJ, PLY or STL): the fixed "
+                            "mesh is written in that file's format and vertex numbering");
   o.threads = threads == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : threads;
   o.skip_restricted = skip_restricted;
   if (!kind_arg.is_none()) {
@@ -593,14 +599,22 @@ py::object py_certify(const py::object& manifold_arg, const py::object& points_a
     if (!report_path.empty() && !report::viewer_available())
       throw BindingInputError(report::viewer_missing_message());  // as delcert-certify --report
     if (!report_path.empty()) io::check_output_path(report_path, "--report", inputs, {out});
+    if (!fix_out.empty()) io::check_fix_out(fix_out, o.manifold, o.complex, o.complex_format, inputs, {out, report_path});
     return 0;
   });
   std::string text = translating(prefix, arrays, [&] {
     py::gil_scoped_release release;
-    std::string t = certify::run_certify(o).to_text(times);
+    certify::Certificate cert = certify::run_certify(o);
+    // A surface mesh: its non-Delaunay edges in its file's numbering and fix_out's mesh, as delcert-certify adds them.
+    const io::MeshReport mesh = io::report_mesh(cert.inputs, cert.parameters["kind"] == "restricted", cert.restricted_complex,
+                                                cert.checks[11].details.value("reason", cert.checks[11].summary), fix_out,
+                                                certify::detail::Sha256::hex);
+    if (!mesh.json.is_null()) cert.inputs["complex"]["mesh_feedback"] = mesh.json;
+    std::string t = cert.to_text(times);
     // The certificate names its inputs: a temporary file is named as its argument ("points", ...).
     for (std::size_t at; (at = t.find(prefix)) != std::string::npos;) t.erase(at, prefix.size());
     std::vector<std::pair<std::string, std::string>> files;
+    if (mesh.fixed_mesh) files.emplace_back(fix_out, *mesh.fixed_mesh);
     if (!out.empty()) files.emplace_back(out, t);  // the bytes of the returned certificate
     // The page reads the points and the complex from the files run_certify read (the temporary
     // copies of arrays are still there).
@@ -666,6 +680,7 @@ PYBIND11_MODULE(delcert, m) {
         py::arg("kind") = py::none(), py::arg("claims") = py::none(), py::arg("threads") = 0,
         py::arg("skip_restricted") = false, py::arg("times") = true, py::arg("complex_format") = "auto",
         py::arg("residual_tolerance") = py::none(), py::arg("out") = py::none(), py::arg("report") = py::none(),
+        py::arg("fix_out") = py::none(),
         "The independent certificate (`delcert-certify`), as a dict: certificate['verdict'] is\n"
         "'CERTIFIED', 'REFUTED' or 'UNDECIDED'. Each option is the command's flag of the same name:\n"
         "  points              array (n, N) or file path (--points)\n"
@@ -685,7 +700,11 @@ PYBIND11_MODULE(delcert, m) {
         "  out                 also write the certificate JSON to this path, the bytes of the returned\n"
         "                      dict (--out)\n"
         "  report              also write the certificate as a self-contained HTML page (--report)\n"
-        "out and report are checked before any work (not an input, in an existing folder, not each\n"
+        "  fix_out             a surface mesh file given as complex: when check 12 proves Del_RM(P) complete\n"
+        "                      and pure, write its triangles to this path in the mesh's format and vertex\n"
+        "                      numbering (--fix-out); certificate['inputs']['complex']['mesh_feedback'] lists\n"
+        "                      the mesh's non-Delaunay edges in the file's numbering\n"
+        "out, report and fix_out are checked before any work (not an input, in an existing folder, not each\n"
         "other) and written together, atomically, or not at all: bad input raises InputError and\n"
         "writes nothing. Whatever the verdict, the certificate is returned (and written).");
 }

@@ -1,6 +1,6 @@
 """delcert.certify()'s options that are delcert-certify's flags of the same name (issue 41):
 complex_format (--complex-format), residual_tolerance (--residual-tolerance), out (--out) and
-report (--report). Each is checked against the command on the same files, and bad values are
+report (--report) and fix_out (--fix-out). Each is checked against the command on the same files, and bad values are
 refused with InputError (a ValueError) and no file written. Run by ctest (label "python") with
 PYTHONPATH, DELCERT_BINARY_DIR and DELCERT_FIXTURES_DIR set (tests/CMakeLists.txt).
 """
@@ -40,7 +40,7 @@ def test_the_options_are_the_commands_flags():
     # Every option of delcert-certify's --help but --halo (MPI ranks only) and --no-times (times=False,
     # as refine's restricted_check=False is --no-restricted-check) is a keyword of certify().
     _, help_text, _ = run_certify_cli("--help")
-    flags = {word.split("=")[0] for word in help_text.split() if word.startswith("--")}
+    flags = set(re.findall(r"(?<![\w-])--[a-z][a-z-]*[a-z]", help_text))
     flags -= {"--help", "--version", "--halo", "--no-times"}
     assert {"--manifold", "--points", "--complex", "--complex-format", "--residual-tolerance", "--out",
             "--report"} <= flags, flags
@@ -173,7 +173,7 @@ def test_bad_complex_format_is_refused():
 
 def test_residual_tolerance_admits_points_the_spec_refuses_and_is_recorded(tmp_path):
     # Claimed tangential, the points must be on M within the tolerance: refused with the spec's 1e-9...
-    with pytest.raises(delcert.InputError, match="not on the manifold.*--residual-tolerance"):
+    with pytest.raises(delcert.InputError, match="not on M.*--residual-tolerance"):
         delcert.certify("builtin:sphere-2", OFF_SPHERE, OFF_SPHERE, kind="tangential", threads=THREADS)
     # ... certified with 1e-6, given as text, fraction or float, each read exactly.
     for tolerance in ("1e-6", "1/1000000", 1e-6):
@@ -197,7 +197,7 @@ def test_residual_tolerance_admits_points_the_spec_refuses_and_is_recorded(tmp_p
     points = OFF_SPHERE.read_text().splitlines()
     coords = np.array([[float(x) for x in line.split()[1:]] for line in points if line.startswith("v ")])
     faces = np.array([[int(x) - 1 for x in line.split()[1:]] for line in points if line.startswith("f ")])
-    with pytest.raises(delcert.InputError, match="not on the manifold"):
+    with pytest.raises(delcert.InputError, match="not on M"):
         delcert.certify("builtin:sphere-2", coords, faces, kind="tangential", threads=THREADS)
     assert delcert.certify("builtin:sphere-2", coords, faces, kind="tangential", threads=THREADS,
                            residual_tolerance="1e-6")["verdict"] == "CERTIFIED"
@@ -214,3 +214,59 @@ def test_bad_residual_tolerance_is_refused_with_the_commands_message(tmp_path):
         assert not out.exists()
     with pytest.raises(delcert.InputError, match="--residual-tolerance: expected a number"):
         delcert.certify("builtin:sphere-2", OFF_SPHERE, OFF_SPHERE, residual_tolerance=[1e-6])
+
+
+# ------------------------------------------------------------------------------------------ fix_out
+
+CGAL_SPHERE = FIXTURES / "certify" / "cgal-mesh-sphere.off"  # CGAL's mesher: exactly Del_RM of its vertices
+
+
+def flipped_obj(path):
+    """CGAL's sphere mesh as OBJ with the edge a-b of its face 0 flipped to c-d; returns (a, b, c, d), 0-based."""
+    lines = [line for line in CGAL_SPHERE.read_text().splitlines() if line.strip() and not line.startswith("#")]
+    n, f = (int(x) for x in lines[1].split()[:2])
+    vertices = [line.split()[:3] for line in lines[2:2 + n]]
+    faces = [[int(x) for x in line.split()[1:4]] for line in lines[2 + n:2 + n + f]]
+    a, b, c = faces[0]
+    j = next(j for j in range(1, f) if a in faces[j] and b in faces[j])
+    d = next(v for v in faces[j] if v not in (a, b))
+    faces[0], faces[j] = [a, d, c], [d, b, c]
+    path.write_text("".join(f"v {' '.join(v)}\n" for v in vertices) +
+                    "".join(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n" for t in faces))
+    return a, b, c, d
+
+
+def test_fix_out_writes_the_commands_fixed_mesh_and_the_edges_are_in_the_certificate(tmp_path):
+    mesh, fixed, cli_fixed = tmp_path / "flipped.obj", tmp_path / "fixed.obj", tmp_path / "cli-fixed.obj"
+    a, b, c, d = flipped_obj(mesh)
+    cert = delcert.certify("builtin:sphere-2", mesh, mesh, threads=THREADS, times=False, fix_out=fixed,
+                           out=tmp_path / "py.json")
+    assert cert["verdict"] == "REFUTED"
+    feedback = cert["inputs"]["complex"]["mesh_feedback"]
+    assert feedback["non_delaunay_edges_total"] == 1
+    edge = feedback["non_delaunay_edges"][0]
+    assert [v["file_index"] for v in edge["edge"]] == [min(c, d) + 1, max(c, d) + 1]  # OBJ numbering, from 1
+    assert [v["file_index"] for v in edge["flip"]["to"]] == [min(a, b) + 1, max(a, b) + 1]
+    # The command's fixed mesh and certificate, byte for byte.
+    code, _, err = run_certify_cli("--manifold", "builtin:sphere-2", "--points", mesh, "--complex", mesh,
+                                   "--threads", THREADS, "--no-times", "--fix-out", cli_fixed,
+                                   "--out", tmp_path / "cli.json")
+    assert code == 1, err
+    assert fixed.read_bytes() == cli_fixed.read_bytes()
+    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+    # The fixed mesh certifies, and has nothing to say about its edges.
+    again = delcert.certify("builtin:sphere-2", fixed, fixed, threads=THREADS)
+    assert again["verdict"] == "CERTIFIED"
+    assert "mesh_feedback" not in again["inputs"]["complex"]
+
+
+def test_fix_out_is_refused_before_any_work_where_it_cannot_be_written(tmp_path):
+    mesh = tmp_path / "flipped.obj"
+    flipped_obj(mesh)
+    with pytest.raises(delcert.InputError, match="fix_out needs complex given as a surface mesh file"):
+        delcert.certify("builtin:sphere-2", OCTAHEDRON, [[0, 1, 2]], fix_out=tmp_path / "x.obj")
+    with pytest.raises(delcert.InputError, match="--fix-out"):  # not the mesh's format
+        delcert.certify("builtin:sphere-2", mesh, mesh, fix_out=tmp_path / "x.stl", out=tmp_path / "c.json")
+    with pytest.raises(delcert.InputError, match="--fix-out"):  # the input itself
+        delcert.certify("builtin:sphere-2", mesh, mesh, fix_out=mesh)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["flipped.obj"]
