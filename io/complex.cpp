@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
+#include <cmath>
+#include <set>
+#include <span>
+#include <string>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -88,6 +93,105 @@ std::vector<bool> faces_of_others(const std::vector<std::vector<int>>& sorted) {
   return face;
 }
 
+// A filtration value as GUDHI writes one: a finite decimal or "inf" (infinite filtration).
+bool is_filtration_value(std::string_view t) {
+  if (t == "inf" || t == "+inf") return true;
+  double x = 0;
+  const char* end = t.data() + t.size();
+  auto [ptr, ec] = std::from_chars(t.data() + (!t.empty() && t[0] == '+' ? 1 : 0), end, x);
+  return ec == std::errc() && ptr == end && std::isfinite(x);
+}
+
+// A Python float's spelling (print(*simplex, filtration)): a number that is not an integer's digits.
+bool is_decimal_filtration_value(std::string_view t) { return is_filtration_value(t) && !all_digits(t); }
+
+// The three layouts of a GUDHI simplex list, one simplex per line (docs/formats.md):
+//   plain        "0 1 2"            vertex indices only
+//   filtered     "0 1 2 0.35"       vertex indices, then the filtration value (Python:
+//                                   for s, f in st.get_filtration(): print(*s, f))
+//   simplex_tree "2 2 1 0 0.35"     the dimension k, the k + 1 vertices in decreasing order, the
+//                                   filtration value (C++: std::cout << simplex_tree, GUDHI's operator<<)
+enum class GudhiLayout { plain, filtered, simplex_tree };
+
+// The vertex tokens of a line in a layout.
+std::span<const std::string_view> vertex_tokens(const Line& l, GudhiLayout layout) {
+  std::span<const std::string_view> t = l.tokens;
+  switch (layout) {
+    case GudhiLayout::plain: return t;
+    case GudhiLayout::filtered: return t.first(t.size() - 1);
+    case GudhiLayout::simplex_tree: return t.subspan(1, t.size() - 2);
+  }
+  return t;
+}
+
+// Every line "k v_k ... v_0 f" with k + 1 distinct vertices in decreasing order, at least one of
+// dimension >= 1, and every facet of a listed simplex listed (a simplex tree holds all faces).
+bool reads_as_simplex_tree(const detail::Lines& lines) {
+  std::set<std::vector<long>> listed;
+  std::vector<std::vector<long>> simplices;
+  bool above_vertices = false;
+  for (const Line& l : lines) {
+    const auto& t = l.tokens;
+    if (t.size() < 3 || t.size() > kMaxSimplexVertices + 2 || !all_digits(t[0]) || !is_filtration_value(t[t.size() - 1]))
+      return false;
+    if (t[0].size() > 2 || std::stol(std::string(t[0])) + 3 != static_cast<long>(t.size())) return false;
+    std::vector<long> s;
+    for (std::size_t k = 1; k + 1 < t.size(); ++k) {
+      if (!all_digits(t[k]) || t[k].size() > 9) return false;
+      s.push_back(std::stol(std::string(t[k])));
+      if (s.size() > 1 && s[s.size() - 2] <= s.back()) return false;
+    }
+    above_vertices = above_vertices || s.size() > 1;
+    std::reverse(s.begin(), s.end());
+    if (!listed.insert(s).second) return false;
+    simplices.push_back(std::move(s));
+  }
+  if (!above_vertices) return false;
+  for (const auto& s : simplices) {
+    if (s.size() < 2) continue;
+    for (std::size_t drop = 0; drop < s.size(); ++drop) {
+      std::vector<long> facet;
+      for (std::size_t k = 0; k < s.size(); ++k)
+        if (k != drop) facet.push_back(s[k]);
+      if (!listed.count(facet)) return false;
+    }
+  }
+  return true;
+}
+
+// Which layout a headerless list of lines has; throws (with the line) when it is none of them.
+GudhiLayout gudhi_layout(const detail::Lines& lines, const std::string& file) {
+  if (reads_as_simplex_tree(lines)) return GudhiLayout::simplex_tree;
+  // The first line that ends in a decimal filtration value, if any: then every line must.
+  long filtered_line = 0;
+  std::string filtered_value;
+  for (const Line& l : lines)
+    if (is_decimal_filtration_value(l.tokens[l.tokens.size() - 1])) {
+      filtered_line = l.number;
+      filtered_value = l.tokens[l.tokens.size() - 1];
+      break;
+    }
+  const bool filtered = filtered_line > 0;
+  const GudhiLayout layout = filtered ? GudhiLayout::filtered : GudhiLayout::plain;
+  for (const Line& l : lines) {
+    const auto& t = l.tokens;
+    if (filtered && !is_decimal_filtration_value(t[t.size() - 1]))
+      throw InputError(file, l.number,
+                       "this line does not end in a filtration value, but line " + std::to_string(filtered_line) +
+                           " does ('" + filtered_value +
+                           "'): a GUDHI simplex list gives a filtration value on every line (a decimal, e.g. 0.0) or on none");
+    if (filtered && t.size() < 2)
+      throw InputError(file, l.number, "a filtration value without a simplex; expected vertex indices, then the value");
+    for (auto v : vertex_tokens(l, layout))
+      if (!all_digits(v))
+        throw InputError(file, l.number,
+                         "expected a vertex index (a non-negative integer), found '" + std::string(v) +
+                             "'; a GUDHI simplex list has vertex indices, then " +
+                             (filtered ? "the filtration value" : "optionally a filtration value (a decimal, on every line)"));
+  }
+  return layout;
+}
+
 // Which format, when none was given: a tag on the first line, then the mesh formats (first line
 // "ply", first word "solid", extension .obj/.ply/.stl), then headerless lines of integers (gudhi
 // when every line has the same length or every shorter line is a face of a longer one).
@@ -102,10 +206,14 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
   if (lines.empty())
     throw InputError(file, 0, "empty file; expected a 'delcert-complex v1' or 'OFF' header, an OBJ/PLY/STL mesh or a "
                               "GUDHI simplex list");
-  bool integers = true;
+  // Lines of integers, each maybe followed by a filtration value: a GUDHI simplex list.
+  bool numbers = true;
   for (const Line& l : lines)
-    for (auto t : l.tokens) integers = integers && all_digits(t);
-  if (!integers)
+    for (std::size_t k = 0; k < l.tokens.size(); ++k)
+      numbers = numbers && (all_digits(l.tokens[k]) || (k + 1 == l.tokens.size() && is_filtration_value(l.tokens[k])));
+  // A first line that starts with a vertex index: a GUDHI simplex list with a bad line, named here.
+  if (!numbers && all_digits(lines[0].tokens[0])) gudhi_layout(lines, file);
+  if (!numbers)
     throw InputError(file, lines[0].number,
                      "unknown complex format '" + std::string(lines[0].tokens[0]) +
                          "'; expected 'delcert-complex v1' or 'OFF' on the first line, an OBJ, PLY or STL mesh (by "
@@ -114,10 +222,12 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
   // Lines of different lengths: a simplex-tree export lists every face of its simplices, so every
   // shorter line is a face of a longer one. A line that is not (such as a count line "6 8" before
   // triangles on vertices 0..5) makes the file ambiguous.
+  const GudhiLayout layout = gudhi_layout(lines, file);
+  if (layout == GudhiLayout::simplex_tree) return ComplexFormat::gudhi;  // closed under faces: checked
   std::vector<std::vector<int>> simplices;
   for (const Line& l : lines) {
     std::vector<int> s;
-    for (auto t : l.tokens)
+    for (auto t : vertex_tokens(l, layout))
       s.push_back(static_cast<int>(
           std::min<long>(parse_count(t, file, l.number, "a vertex index"), std::numeric_limits<int>::max() - 1)));
     std::sort(s.begin(), s.end());
@@ -142,14 +252,12 @@ ComplexFormat detect_format(const std::string& text, const std::string& file, co
 void parse_gudhi(const detail::Lines& lines, const std::string& file, std::size_t num_vertices, ComplexFile& out,
                  std::vector<long>& line_of) {
   if (lines.empty()) throw InputError(file, 0, "empty GUDHI simplex list; expected one simplex per line");
+  const GudhiLayout layout = gudhi_layout(lines, file);  // (vertex tokens are digits from here on)
   std::size_t nv = num_vertices;
   if (nv == 0) {
     long largest = -1;
     for (const Line& l : lines)
-      for (auto t : l.tokens) {
-        if (!all_digits(t)) break;  // reported below, with its line
-        largest = std::max(largest, parse_count(t, file, l.number, "a vertex index"));
-      }
+      for (auto t : vertex_tokens(l, layout)) largest = std::max(largest, parse_count(t, file, l.number, "a vertex index"));
     if (largest >= std::numeric_limits<int>::max())
       throw InputError(file, 0, "vertex index " + std::to_string(largest) + " is too large");
     nv = static_cast<std::size_t>(largest + 1);
@@ -157,13 +265,8 @@ void parse_gudhi(const detail::Lines& lines, const std::string& file, std::size_
   std::vector<std::vector<int>> all;
   std::vector<long> all_lines;
   for (const Line& l : lines) {
-    for (auto t : l.tokens)
-      if (!all_digits(t))
-        throw InputError(file, l.number,
-                         "expected a vertex index (a non-negative integer), found '" + std::string(t) +
-                             "'; a GUDHI simplex list has vertex indices only: write the simplices without their "
-                             "filtration values");
-    all.push_back(parse_simplex(l.tokens, 0, nv, file, l.number));
+    all.push_back(parse_simplex(vertex_tokens(l, layout), 0, nv, file, l.number));
+    if (layout == GudhiLayout::simplex_tree) std::reverse(all.back().begin(), all.back().end());  // increasing, as listed by Python
     all_lines.push_back(l.number);
   }
   check_unique(all, all_lines, file);
@@ -181,10 +284,16 @@ void parse_gudhi(const detail::Lines& lines, const std::string& file, std::size_
     line_of.push_back(all_lines[i]);
   }
   out.complex.num_vertices = nv;
+  const char* what = layout == GudhiLayout::simplex_tree ? "GUDHI simplex tree (dimension, vertices, filtration value per line)"
+                     : layout == GudhiLayout::filtered   ? "GUDHI simplex list with filtration values"
+                                                         : "GUDHI simplex list";
+  const std::string values = layout == GudhiLayout::plain ? "" : ", filtration values ignored";
   if (dropped)
-    out.note = "GUDHI simplex list: " + std::to_string(all.size()) + " simplices read, " + std::to_string(dropped) +
-               " faces of other listed simplices dropped, " + std::to_string(out.complex.simplices.size()) +
-               " maximal simplices kept";
+    out.note = std::string(what) + ": " + std::to_string(all.size()) + " simplices read" + values + ", " +
+               std::to_string(dropped) + " faces of other listed simplices dropped, " +
+               std::to_string(out.complex.simplices.size()) + " maximal simplices kept";
+  else if (layout != GudhiLayout::plain)
+    out.note = std::string(what) + ": " + std::to_string(all.size()) + " simplices read" + values;
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 //   OFF                  a surface mesh in R^3: its faces must be triangles ("3 a b c").
 //   OBJ, PLY, STL        surface meshes in R^3 through CGAL's polygon-soup readers (io/mesh.hpp).
 //   gudhi                no header: one simplex per line as vertex indices (GUDHI's simplex-tree
-//                        exports); faces of listed simplices may be listed too and are dropped,
-//                        the maximal simplices are kept.
+//                        exports), optionally followed by a filtration value ("0 1 2 0.35", from
+//                        Python) or as GUDHI's C++ operator<< writes it ("2 2 1 0 0.35": the
+//                        dimension, the vertices decreasing, the value); values are ignored; faces
+//                        of listed simplices may be listed too and are dropped, the maximal
+//                        simplices are kept.
 // Written: delcert-complex v1, simplices in the order stored.
 #pragma once
 

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <limits>
 
 #include "exact/equations.hpp"
@@ -286,6 +288,39 @@ ManifoldSpec parse_spec(const std::string& text, const std::string& source) {
   return s;
 }
 
+namespace {
+
+// Levenshtein distance (insertions, deletions, substitutions), case-insensitive.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string nearest_builtin_spec_name(const std::string& name) {
+  std::string best;
+  std::size_t best_distance = 0;
+  for (const auto& n : builtin_spec_names()) {
+    const std::size_t d = edit_distance(name, n);
+    if (best.empty() || d < best_distance) best = n, best_distance = d;  // first of equals: the list's order
+  }
+  // Near enough to be a misspelling: at most a third of the name (at least 2 edits) away.
+  const std::size_t allowed = std::max<std::size_t>(2, std::max(name.size(), best.size()) / 3);
+  return best_distance <= allowed ? best : std::string();
+}
+
 std::string read_spec_text(const std::string& source) {
   constexpr std::string_view prefix = "builtin:";
   if (source.rfind(prefix, 0) == 0) {
@@ -294,9 +329,19 @@ std::string read_spec_text(const std::string& source) {
     if (!text) {
       std::string known;
       for (auto& n : builtin_spec_names()) known += (known.empty() ? "" : ", ") + n;
-      throw InputError(source, 0, "no built-in manifold '" + name + "'; known: " + known);
+      const std::string nearest = nearest_builtin_spec_name(name);
+      throw InputError(source, 0,
+                       "no built-in manifold '" + name + "'; " +
+                           (nearest.empty() ? std::string() : "did you mean builtin:" + nearest + "? ") + "known: " + known);
     }
     return text;
+  }
+  // "--manifold sphere-2": a built-in's name without the prefix, taken for a file that is not there.
+  std::error_code error;
+  if (!std::filesystem::exists(source, error)) {
+    const std::string nearest = nearest_builtin_spec_name(source);
+    if (!nearest.empty())
+      throw InputError(source, 0, "no such file; for the built-in manifold, write --manifold builtin:" + nearest);
   }
   return read_file(source);
 }

@@ -99,6 +99,10 @@ mpq_class parse_residual_tolerance(const std::string& text, const std::string& o
 
 // Names of the built-in specs, sorted.
 std::vector<std::string> builtin_spec_names();
+// The built-in name nearest to `name` by edit distance (case-insensitive), when it is near enough
+// to be a misspelling (at most max(2, length / 3) edits); else "". read_spec_text names it when
+// builtin:NAME is unknown, or when a file that does not exist is named like a built-in.
+std::string nearest_builtin_spec_name(const std::string& name);
 // The text of a built-in spec, or nullptr.
 const char* builtin_spec_text(const std::string& name);
 

@@ -6,6 +6,10 @@
 #include "report/html_report.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -78,6 +82,109 @@ bool is_index_list(const nlohmann::json& j) {
   for (const auto& x : j)
     if (!x.is_number_integer() || x.get<long long>() < 0) return false;
   return true;
+}
+
+// ---- margins as a person reads them -------------------------------------------------------------
+
+// A certified bound shown with 3 significant digits, rounded in its safe direction (a lower bound
+// down, an upper bound up), so that the shown number is still a bound: "0.187", "1.55e-10".
+std::string shown_number(double x, int direction) {
+  if (!std::isfinite(x)) return x > 0 ? "inf" : x < 0 ? "-inf" : "nan";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  double y = std::strtod(buf, nullptr);
+  if ((direction < 0 && y > x) || (direction > 0 && y < x)) {
+    // One unit of the third significant digit towards safety.
+    int e = x == 0 ? 0 : static_cast<int>(std::floor(std::log10(std::fabs(x)))) - 2;
+    y += direction * std::pow(10.0, e);
+    std::snprintf(buf, sizeof buf, "%.3g", y);
+    if ((direction < 0 && std::strtod(buf, nullptr) > x) || (direction > 0 && std::strtod(buf, nullptr) < x))
+      std::snprintf(buf, sizeof buf, "%.17g", x);  // (never reached; the exact text then)
+  }
+  std::string out = buf;
+  // "1.55e-10" as printed; "1.2e-04" -> "1.2e-4".
+  if (auto at = out.find("e"); at != std::string::npos) {
+    std::string mantissa = out.substr(0, at), exponent = out.substr(at + 1);
+    const char sign = exponent[0] == '-' ? '-' : '+';
+    exponent = exponent.substr(exponent[0] == '-' || exponent[0] == '+' ? 1 : 0);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    out = mantissa + "e" + (sign == '-' ? "-" : "") + exponent;
+  }
+  return out;
+}
+
+std::optional<double> number_of(const nlohmann::json& j) {
+  if (j.is_number()) return j.get<double>();
+  if (!j.is_string()) return std::nullopt;
+  const std::string t = j.get<std::string>();
+  char* end = nullptr;
+  const double x = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size()) return std::nullopt;
+  return x;
+}
+
+std::string words(std::string key) {
+  std::replace(key.begin(), key.end(), '_', ' ');
+  return key;
+}
+
+std::string index_list(const nlohmann::json& j) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + std::to_string(j[i].get<long long>());
+  return out + "]";
+}
+
+// One value of a margin, in words: a bound, an enclosure, a place, a list of coordinates.
+std::string margin_value(const nlohmann::json& v) {
+  if (v.is_object()) {
+    const auto lower = v.contains("certified_lower_bound") ? number_of(v["certified_lower_bound"]) : std::nullopt;
+    const auto upper = v.contains("certified_upper_bound") ? number_of(v["certified_upper_bound"]) : std::nullopt;
+    if (lower && upper) return "in [" + shown_number(*lower, -1) + ", " + shown_number(*upper, +1) + "] (certified)";
+    if (lower) return "&ge; " + shown_number(*lower, -1) + " (certified)";
+    if (upper) return "&le; " + shown_number(*upper, +1) + " (certified)";
+    if (v.contains("enclosure") && v["enclosure"].is_array() && v["enclosure"].size() == 2) {
+      const auto a = number_of(v["enclosure"][0]), b = number_of(v["enclosure"][1]);
+      if (a && b) return "in [" + shown_number(*a, -1) + ", " + shown_number(*b, +1) + "]";
+    }
+    std::string out;
+    for (const auto& [key, value] : v.items()) {
+      if (key == "enclosure" && (v.contains("certified_lower_bound") || v.contains("certified_upper_bound"))) continue;
+      out += (out.empty() ? "" : ", ") + escape_html(words(key)) + " " + margin_value(value);
+    }
+    return out;
+  }
+  if (is_index_list(v)) return index_list(v);
+  if (v.is_array()) {
+    std::string out = "(";
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto x = number_of(v[i]);
+      out += (i ? ", " : "") + (x ? shown_number(*x, 0) : margin_value(v[i]));
+    }
+    return out + ")";
+  }
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (const auto x = number_of(v)) return shown_number(*x, 0);
+  if (v.is_string()) return escape_html(v.get<std::string>());
+  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+  return "&mdash;";
+}
+
+// A check's margin as lines of "what: value" (the certificate's JSON holds the exact bounds).
+std::string margin_html(const nlohmann::json& margin) {
+  if (margin.is_null() || (margin.is_object() && margin.empty())) return "&mdash;";
+  if (!margin.is_object()) return margin_value(margin);
+  std::string out;
+  for (const auto& [key, value] : margin.items()) {
+    const bool dimension = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; });
+    out += "<div>" + (dimension ? "dimension " + escape_html(key) : escape_html(words(key))) + ": " + margin_value(value) + "</div>";
+  }
+  return out;
+}
+
+// Table order: what needs a look first (REFUTED, then UNDECIDED), then CERTIFIED, then the rest
+// (REPORT); by id within each.
+int verdict_rank(const std::string& verdict) {
+  return verdict == "REFUTED" ? 0 : verdict == "UNDECIDED" ? 1 : verdict == "CERTIFIED" ? 2 : 3;
 }
 
 // The vertices a witness is about: its simplex (or face, ridge, pair), else its point; empty when
@@ -160,7 +267,9 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
   const nlohmann::json& checks = certificate.contains("checks") ? certificate["checks"] : nlohmann::json::array();
 
   // The verdict table and the witness list, as plain HTML.
-  std::string rows, items;
+  std::string items;
+  std::vector<std::pair<std::pair<int, int>, std::string>> rows;  // ((rank, id), row)
+  std::string refuted_links;
   nlohmann::json witnesses = nlohmann::json::array();
   nlohmann::json margins = nlohmann::json::object();
   for (const auto& c : checks) {
@@ -173,10 +282,15 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
     const std::string decision = text_of(details, "decision");
     const std::string not_claimed = c.value("claimed", true) ? std::string()
                                     : "<br><small>not claimed" + (decision.empty() ? "" : ": " + escape_html(decision)) + "</small>";
-    rows += "<tr class=\"verdict-" + escape_html(verdict) + "\"><td>" + std::to_string(id) + "</td><td>" +
-            escape_html(name) + "</td><td class=\"verdict\">" + escape_html(verdict) + not_claimed + "</td><td>" +
-            escape_html(text_of(c, "summary")) + "</td><td><code>" +
-            escape_html(margin.is_null() ? std::string("—") : margin.dump()) + "</code></td></tr>\n";
+    rows.push_back({{verdict_rank(verdict), id},
+                    "<tr id=\"check-" + std::to_string(id) + "\" class=\"verdict-" + escape_html(verdict) + "\"><td>" +
+                        std::to_string(id) + "</td><td>" + escape_html(name) + "</td><td class=\"verdict\">" +
+                        escape_html(verdict) + not_claimed + "</td><td>" + escape_html(text_of(c, "summary")) +
+                        "</td><td class=\"margin\">" + margin_html(margin) + "</td></tr>\n"});
+    if (verdict == "REFUTED" || verdict == "UNDECIDED")
+      refuted_links += std::string(refuted_links.empty() ? "" : ", ") + "<a href=\"#check-" + std::to_string(id) +
+                       "\" class=\"verdict-" + escape_html(verdict) + "\">" + escape_html(verdict) + " check " +
+                       std::to_string(id) + " " + escape_html(name) + "</a>";
     const std::string check_reason = text_of(details, "reason");
     if (!c.contains("witnesses") || !c["witnesses"].is_array()) continue;
     int k = 0;
@@ -209,6 +323,9 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
                std::to_string(details["witnesses_total"].get<long long>() - k) +
                " more not listed in the certificate (it keeps the first " + std::to_string(k) + ")</li>\n";
   }
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string row_text;
+  for (const auto& r : rows) row_text += r.second;
   if (items.empty()) items = "<li class=\"witness-none\">no witnesses: nothing was refuted</li>\n";
 
   const nlohmann::json& inputs = certificate.contains("inputs") ? certificate["inputs"] : nlohmann::json::object();
@@ -229,7 +346,9 @@ std::string format_html_report(const nlohmann::json& certificate, const io::Poin
   return fill(embedded::page(), {{"TITLE", escape_html(title)},
                                  {"VERDICT", escape_html(verdict)},
                                  {"INPUTS", escape_html(inputs.dump(2))},
-                                 {"CHECK_ROWS", rows},
+                                 {"CHECK_ROWS", row_text},
+                                 {"NEEDS_A_LOOK", refuted_links.empty() ? std::string("no check refuted or undecided")
+                                                                        : "needs a look: " + refuted_links},
                                  {"WITNESS_COUNT", std::to_string(witnesses.size())},
                                  {"WITNESS_ITEMS", items},
                                  {"THREE_VERSION", DELCERT_THREEJS_VERSION},

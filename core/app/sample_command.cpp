@@ -29,6 +29,12 @@ int run_sample(const SampleArgs& a) {
   options.progress = eps_net_progress(progress);
   auto net = sampling::eps_net(manifold, options);
   progress.clear();
+  if (net.dense_capped)
+    std::fprintf(stderr,
+                 "warning: eps %s: the dense sample stopped at its cap of %zu points, fewer than %.0f per net point; "
+                 "the eps-net (%zu points) is eps-sparse but covers M less surely; give eps >= %s to stay within the cap\n",
+                 a.eps.c_str(), options.max_dense, options.oversampling, net.points.size(),
+                 sampling::smallest_eps_within_cap(manifold, options).c_str());
   manifold::check_sample_on_manifold(manifold, net.points, a.manifold);
   io::write_points(a.out, net.points);
   std::printf("manifold           %s (m = %d, N = %d)\n", manifold.spec().name.c_str(), manifold.intrinsic_dimension(),
@@ -47,13 +53,23 @@ int run_sample(const SampleArgs& a) {
   return kExitOk;
 }
 
+std::string eps_help() {
+  const sampling::EpsNetOptions defaults;
+  const auto per_point = static_cast<std::size_t>(defaults.oversampling);
+  return "sparsity and sampling radius: a decimal or a fraction (0.1, 1/10, 1e-1), as refine --eps. The net is "
+         "selected from a dense sample of about " + std::to_string(per_point) + " points per net point, capped at " +
+         std::to_string(defaults.max_dense) + " points (nets of at most about " +
+         std::to_string(defaults.max_dense / per_point / 1000) +
+         "k points): an eps that needs more is refused, and the message names the smallest eps that fits";
+}
+
 }  // namespace
 
 Command add_sample_command(CLI::App& app) {
   auto args = std::make_shared<SampleArgs>();
   auto* sub = app.add_subcommand("sample", "write an eps-net of M (farthest-point selection from a dense sample)");
   sub->add_option("--manifold", args->manifold, manifold_option_help())->required();
-  sub->add_option("--eps", args->eps, "sparsity and sampling radius: a decimal or a fraction (0.1, 1/10, 1e-1), as refine --eps")->required();
+  sub->add_option("--eps", args->eps, eps_help())->required();
   sub->add_option("--seed", args->seed, "random seed (same seed, same bytes)")
       ->capture_default_str()
       ->transform(whole_number("a seed", std::numeric_limits<std::uint64_t>::max()));

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <utility>
 
 #include <limits>
 #include <numbers>
@@ -180,6 +183,7 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
   std::size_t target = options.min_dense;
   std::vector<std::size_t> selected;
   double cover = 0;
+  bool capped = false;
   for (int round = 0; round < 6; ++round) {
     std::function<void(std::size_t)> on_point, on_select;
     if (options.progress) {
@@ -191,6 +195,7 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
     sample_manifold(manifold, target - dense.size(), rng, dense, on_point);
     selected = farthest_point_selection(dense, options.eps, &cover, on_select);
     auto wanted = static_cast<std::size_t>(options.oversampling * static_cast<double>(selected.size()));
+    capped = wanted > options.max_dense;
     wanted = std::min(std::max(wanted, options.min_dense), options.max_dense);
     if (wanted <= dense.size() * 11 / 10) break;  // dense enough: within 10% of the target
     target = wanted;
@@ -203,6 +208,7 @@ EpsNetResult eps_net(const manifold::Manifold& manifold, const EpsNetOptions& op
   }
   r.covering_radius = cover;
   r.dense_size = dense.size();
+  r.dense_capped = capped;
   const spatial::NeighbourIndex tree(r.points);
   double min2 = std::numeric_limits<double>::infinity();
   std::vector<std::pair<double, std::size_t>> nn;
@@ -250,16 +256,70 @@ EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNet
   return e;
 }
 
+namespace {
+
+// `units` x 10^`exponent` as a decimal a person reads and --eps parses exactly: "0.0071", "12", "3.5e-07".
+std::string decimal_text(long long units, int exponent) {
+  std::string digits = std::to_string(units);
+  while (digits.size() > 1 && digits.back() == '0') digits.pop_back(), ++exponent;
+  const int lead = exponent + static_cast<int>(digits.size()) - 1;  // the power of ten of the first digit
+  if (lead < -5 || lead > 6) {
+    std::string mantissa = digits.substr(0, 1) + (digits.size() > 1 ? "." + digits.substr(1) : "");
+    return mantissa + "e" + std::to_string(lead);
+  }
+  if (exponent >= 0) return digits + std::string(static_cast<std::size_t>(exponent), '0');
+  const int point = static_cast<int>(digits.size()) + exponent;  // digits before the decimal point
+  if (point > 0) return digits.substr(0, static_cast<std::size_t>(point)) + "." + digits.substr(static_cast<std::size_t>(point));
+  return "0." + std::string(static_cast<std::size_t>(-point), '0') + digits;
+}
+
+// The smallest 2-significant-digit decimal >= x (x > 0, finite): 0.00706 -> "0.0071", 0.0070 -> "0.007".
+std::pair<long long, int> round_up_two_digits(double x) {
+  int exponent = static_cast<int>(std::floor(std::log10(x))) - 1;
+  auto units = static_cast<long long>(std::ceil(x / std::pow(10.0, exponent)));
+  if (units < 10) units *= 10, --exponent;  // log10 rounded up across a power of ten
+  while (static_cast<double>(units) * std::pow(10.0, exponent) < x) ++units;
+  if (units >= 100) units = (units + 9) / 10, ++exponent;
+  return {units, exponent};
+}
+
+bool fits_the_cap(const manifold::Manifold& manifold, const EpsNetOptions& options, double eps) {
+  EpsNetOptions o = options;
+  o.eps = eps;
+  return estimate_eps_net(manifold, o).dense_points <= static_cast<double>(options.max_dense);
+}
+
+}  // namespace
+
+std::string smallest_eps_within_cap(const manifold::Manifold& manifold, const EpsNetOptions& options) {
+  const EpsNetEstimate e = estimate_eps_net(manifold, options);
+  double from = std::isfinite(e.eps_at_cap) && e.eps_at_cap > options.eps ? e.eps_at_cap : options.eps;
+  auto [units, exponent] = round_up_two_digits(from);
+  // The estimate at another eps is another pilot run: eps_at_cap is only where it extrapolates to,
+  // so the suggestion is checked, and raised one step (of the second digit) until it fits. Both
+  // doubles the decimal may become are checked: the nearest and the one below it (a rational's
+  // get_d truncates), so that the suggestion, fed back as --eps, is accepted.
+  for (int step = 0; step < 1000; ++step) {
+    const std::string text = decimal_text(units, exponent);
+    const double nearest = std::strtod(text.c_str(), nullptr);
+    if (fits_the_cap(manifold, options, nearest) && fits_the_cap(manifold, options, std::nextafter(nearest, 0.0)))
+      return text;
+    if (++units >= 100) units = 10, ++exponent;
+  }
+  return decimal_text(units, exponent);  // (not reached for a manifold of finite size: a coarse eps fits)
+}
+
 void check_eps_net_size(const manifold::Manifold& manifold, const sampling::EpsNetOptions& options) {
   const sampling::EpsNetEstimate e = sampling::estimate_eps_net(manifold, options);
   const double cap = static_cast<double>(options.max_dense);
   if (e.dense_points > cap) {
-    char dense[32], msg[400];
+    char dense[32], msg[600];
     std::snprintf(dense, sizeof dense, std::isfinite(e.dense_points) ? "about %.3g" : "more than 1e308", e.dense_points);
     std::snprintf(msg, sizeof msg,
                   "%g is too small for this command: its eps-net needs a dense sample of %s points, more than the cap "
-                  "of %.3g; give eps >= %.2g",
-                  options.eps, dense, cap, e.eps_at_cap);
+                  "of %.3g (about %.0f per net point: nets of at most about %.0f points); give eps >= %s",
+                  options.eps, dense, cap, options.oversampling, cap / options.oversampling,
+                  smallest_eps_within_cap(manifold, options).c_str());
     throw io::InputError("--eps", 0, msg);
   }
   if (e.dense_points > 1e6)

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "core/manifold/manifold.hpp"
 #include "core/sampling/random.hpp"
@@ -37,6 +38,9 @@ struct EpsNetResult {
   double min_distance = 0;        // smallest pairwise distance in the net (>= eps)
   double max_residual = 0;        // max over net points of max_i |F_i(p)|
   std::size_t dense_size = 0;
+  // The dense sample stopped at options.max_dense points, fewer than `oversampling` per net
+  // point: the net is still eps-sparse, but covers M less surely (a coarser eps avoids it).
+  bool dense_capped = false;
 };
 
 // An eps-net of M: farthest-point selection from a dense sample, stopping when every dense
@@ -64,7 +68,12 @@ EpsNetEstimate estimate_eps_net(const manifold::Manifold& manifold, const EpsNet
 // (io::InputError on --eps) an eps whose net would need a dense sample beyond options.max_dense
 // (the selection could not give an eps-net, and would run for hours), naming the smallest eps that
 // fits; warns on stderr beyond 10^6 dense points. By estimate_eps_net (a pilot, seeded).
+// The message (exit 2) names the cap and the smallest_eps_within_cap.
 void check_eps_net_size(const manifold::Manifold& manifold, const EpsNetOptions& options);
+// The eps check_eps_net_size suggests, as the decimal it prints: two significant digits, rounded
+// up, and checked (by estimate_eps_net at both doubles the decimal may be read as) to pass
+// check_eps_net_size, so that feeding it back as --eps is accepted.
+std::string smallest_eps_within_cap(const manifold::Manifold& manifold, const EpsNetOptions& options);
 
 // Farthest-point selection on a given point set: indices of the selected points, in order,
 // starting from point 0, until the farthest remaining point is closer than eps. Also returns

@@ -135,9 +135,72 @@ TEST(Gudhi, AmbiguousFilesNameTheFormatsToChoose) {
   test::expect_input_error([](const std::string& p) { read_complex(p, {ComplexFormat::gudhi, 6}); },
                            fixture("meshes/ambiguous.txt"), 1, "vertex index 6 out of range");
   EXPECT_EQ(read_complex(fixture("meshes/ambiguous.txt"), {ComplexFormat::gudhi, 9}).complex.simplices.size(), 9u);
+  // Filtration values on some lines only: the line without one is named.
   test::expect_input_error([](const std::string& p) { read_complex(p); }, fixture("meshes/bad-filtration.gudhi"), 1,
-                           "unknown complex format '0'");
+                           "this line does not end in a filtration value, but line 2 does ('0.25')");
 }
+
+// GUDHI's two exports of a filtered simplex tree (issue 41; fixtures checked against GUDHI 3.7.1):
+// Python's `print(*s, f)` over get_filtration() and C++'s `std::cout << simplex_tree`
+// ("dimension, vertices in decreasing order, value"). Both are detected, the values ignored and
+// the faces dropped: the octahedron of the OFF file.
+TEST(Gudhi, FiltrationValuesAreReadAndIgnored) {
+  const ComplexFile off = read_complex(fixture("complexes/octahedron.off"));
+  for (const char* name : {"meshes/octahedron-filtered.gudhi", "meshes/octahedron-simplex-tree.gudhi"})
+    for (ComplexFormat format : {ComplexFormat::automatic, ComplexFormat::gudhi}) {
+      const ComplexFile g = read_complex(fixture(name), {format, 6});
+      EXPECT_EQ(g.format, ComplexFormat::gudhi) << name;
+      EXPECT_EQ(g.complex.num_vertices, 6u) << name;
+      EXPECT_EQ(sorted_simplices(g.complex), sorted_simplices(off.complex)) << name;
+      EXPECT_NE(g.note.find("26 simplices read, filtration values ignored, 18 faces of other listed simplices dropped"),
+                std::string::npos)
+          << g.note;
+    }
+  EXPECT_NE(read_complex(fixture("meshes/octahedron-simplex-tree.gudhi")).note.find("GUDHI simplex tree"), std::string::npos);
+  // One simplex with its value, in either layout; "inf" and exponents are values too.
+  EXPECT_EQ(parse_complex("0 1 2 0.35\n", "f").complex.simplices, (std::vector<std::vector<int>>{{0, 1, 2}}));
+  EXPECT_EQ(parse_complex("0 1 2 inf\n1 2 3 1e-05\n", "f").complex.simplices,
+            (std::vector<std::vector<int>>{{0, 1, 2}, {1, 2, 3}}));
+  EXPECT_EQ(parse_complex("0 0 0\n0 1 0\n1 1 0 0.5\n", "t").complex.simplices, (std::vector<std::vector<int>>{{0, 1}}));
+  // The simplex-tree layout is told by its structure (its values may be integers: C++ prints 0 as
+  // "0"): every line "k v_k .. v_0 f", decreasing vertices, every facet listed. Lines of integers
+  // that are not so are a plain list (here "0 1 2" is a face of "1 2 0 3": one tetrahedron).
+  EXPECT_EQ(parse_complex("0 1 2\n1 2 0 3\n", "p").complex.simplices, (std::vector<std::vector<int>>{{1, 2, 0, 3}}));
+}
+
+struct BadGudhi {
+  const char* text;
+  long line;
+  const char* message;
+};
+
+class GudhiBadFiltration : public ::testing::TestWithParam<BadGudhi> {};
+
+TEST_P(GudhiBadFiltration, IsRefusedWithTheLine) {
+  for (ComplexFormat format : {ComplexFormat::automatic, ComplexFormat::gudhi}) {
+    try {
+      parse_complex(GetParam().text, "list.txt", {format, 0});
+      ADD_FAILURE() << "read: " << GetParam().text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), GetParam().line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(GetParam().message), std::string::npos) << e.what();
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, GudhiBadFiltration,
+    ::testing::Values(
+        // A value on one line only.
+        BadGudhi{"0 1 2 0.5\n0 2 3\n", 2, "this line does not end in a filtration value, but line 1 does ('0.5')"},
+        // A value that is not a number, NaN, or not at the end.
+        BadGudhi{"0 1 2 0.5\n0 2 3 nan\n", 2, "does not end in a filtration value"},
+        BadGudhi{"0 1 0.5 2\n", 1, "expected a vertex index (a non-negative integer), found '0.5'"},
+        // A value without a simplex.
+        BadGudhi{"0 1 0.5\n0.25\n", 2, "a filtration value without a simplex"},
+        // Simplex-tree lines whose facets are not listed are not a simplex tree: then "1 1 0 0.5"
+        // is the simplex {1, 1, 0} and its repeated vertex is refused.
+        BadGudhi{"1 1 0 0.5\n", 1, "vertex 1 repeated in a simplex"}));
 
 struct BadMesh {
   const char* file;
@@ -160,7 +223,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadMesh{"bad-out-of-range.ply", ComplexFormat::automatic, 23, "vertex index 9 out of range"},
                       BadMesh{"bad-degenerate.stl", ComplexFormat::automatic, 51, "face 7 is degenerate"},
                       BadMesh{"bad-huge-count.ply", ComplexFormat::automatic, 3, "announces 4000000000 vertex elements"},
-                      BadMesh{"bad-filtration.gudhi", ComplexFormat::gudhi, 2, "without their filtration values"},
+                      BadMesh{"bad-filtration.gudhi", ComplexFormat::gudhi, 1, "does not end in a filtration value, but line 2 does"},
                       BadMesh{"octahedron.obj", ComplexFormat::off, 2, "--complex-format off: expected the first line 'OFF'"},
                       BadMesh{"octahedron.gudhi", ComplexFormat::delcert, 1, "expected the first line 'delcert-complex v1'"},
                       BadMesh{"octahedron.gudhi", ComplexFormat::stl, 0, "not a readable STL file"}));

@@ -8,13 +8,25 @@ headless Chromium with every network request refused, and checks that
     witness colour inside the canvas;
   * the witness list of the page is the certificate's (check, kind, vertices, in order), and the
     page's data holds the same witnesses;
-  * the report is written again with the same bytes.
+  * the report is written again with the same bytes;
+  * the checks table lists the REFUTED checks first, then UNDECIDED, then CERTIFIED (then REPORT);
+  * the margins column reads as numbers and words, never as raw JSON ({, ", : pairs);
+  * the render counters are for this test only: #render-status is hidden and holds no text, and no
+    text of the page reads like a debug counter ("pixels drawn");
+  * each histogram with a certified bound has no estimate beyond it (data-beyond 0, data-min or
+    data-max within the bound) and shows the bound next to it;
+  * the T^2 in R^4 opens in the angle projection: #viewer's data-projection is "torus" and its first
+    vertices are ((R + r cos phi) cos theta, (R + r cos phi) sin theta, r sin phi) with
+    theta = atan2(x2, x1), phi = atan2(x4, x3), R = 1, r = 0.45, computed here from the points file;
+  * a copy of the page whose thickness bound is raised above the estimates shows the contradiction
+    as an error (data-beyond > 0 and a visible ERROR), not clipped.
 Exit 77 (ctest SKIP_RETURN_CODE) when Chromium is not installed: skipped, not passed.
 
 usage: browser_test.py CERTIFY FIXTURES WORKDIR
 """
 import html
 import json
+import math
 import os
 import re
 import shutil
@@ -108,6 +120,77 @@ def chromium(browser, profile, *args):
     return r.stdout.decode("utf-8", errors="replace")
 
 
+def visible_text(fragment):
+    return html.unescape(re.sub(r"<[^>]*>", " ", fragment))
+
+
+def check_page(dom, certificate, points_path):
+    # The table: REFUTED first, then UNDECIDED, CERTIFIED, the rest; by id within each.
+    body = re.search(r'<table id="checks">.*?<tbody>(.*?)</tbody>', dom, re.S).group(1)
+    rows = re.findall(r'<tr id="check-(\d+)" class="verdict-([A-Z]+)">(.*?)</tr>', body, re.S)
+    if len(rows) != len(certificate["checks"]):
+        fail("the table has %d rows, the certificate %d checks" % (len(rows), len(certificate["checks"])))
+    rank = {"REFUTED": 0, "UNDECIDED": 1, "CERTIFIED": 2}
+    order = [(rank.get(c["verdict"], 3), c["id"]) for c in certificate["checks"]]
+    if [(rank.get(v, 3), int(i)) for i, v, _ in rows] != sorted(order):
+        fail("the table is not ordered REFUTED, UNDECIDED, CERTIFIED: " + " ".join(v for _, v, _ in rows))
+    if rows[0][1] != "REFUTED":
+        fail("the first row of a refuted certificate's table is " + rows[0][1])
+    # Margins: numbers a person reads, no JSON.
+    margins = [visible_text(re.search(r'<td class="margin">(.*?)</td>', r, re.S).group(1)) for _, _, r in rows]
+    for text in margins:
+        if re.search(r'[{}"]|\[\s*"|"\s*:', text):
+            fail("raw JSON in the margins column: " + text)
+        if re.search(r"\.\d*[1-9]\d{4}", text):
+            fail("a margin printed with all its digits: " + text)
+    thickness = next(m for (i, _, _), m in zip(rows, margins) if int(i) == 5)
+    if "dimension 2: faces 190, min thickness" not in thickness or "0.186 (certified)" not in thickness:
+        fail("the thickness margin reads: " + thickness)
+    print("table: %s first; margins e.g. '%s'" % (rows[0][1], thickness.strip()))
+    # No debug counter on the page.
+    status = re.search(r'<div id="render-status"([^>]*)>(.*?)</div>', dom, re.S)
+    if not status or " hidden" not in status.group(1) or status.group(2).strip():
+        fail("#render-status is visible or holds text: " + (status.group(0) if status else "missing"))
+    if re.search(r"pixels drawn|in the witness colour", visible_text(re.sub(r"<script.*?</script>", "", dom, flags=re.S))):
+        fail("the page shows a debug counter")
+    # Histograms: within their certified bounds, the bound shown.
+    bounded = 0
+    for attrs_text, inner in re.findall(r'<div class="hist"([^>]*)>(.*?)(?=<div class="hist"|<h2>)', dom, re.S):
+        a = dict(re.findall(r'data-([a-z]+)="([^"]*)"', attrs_text))
+        if "bound" not in a:
+            continue
+        bounded += 1
+        bound = float(a["bound"])
+        if a.get("quantity") == "protection":
+            if "certified minimum" not in visible_text(inner):
+                fail("the protection bound is not shown: " + visible_text(inner))
+            continue
+        if a["beyond"] != "0" or "contradiction" in inner:
+            fail("histogram %s: %s estimates beyond the certified bound" % (a["quantity"], a["beyond"]))
+        if (a["side"] == "lower" and float(a["min"]) < bound) or (a["side"] == "upper" and float(a["max"]) > bound):
+            fail("histogram %s shows a value beyond its bound %s: %s" % (a["quantity"], bound, a))
+        if "certified" not in visible_text(inner):
+            fail("histogram %s does not show its certified bound" % a["quantity"])
+    if bounded < 3:
+        fail("only %d histograms carry a certified bound (thickness, radius, protection expected)" % bounded)
+    # The flat torus in its angle coordinates.
+    viewer = re.search(r'<div id="viewer"([^>]*)>', dom).group(1)
+    a = dict(re.findall(r'data-([a-z]+)="([^"]*)"', viewer))
+    if a.get("projection") != "torus":
+        fail("the T^2 in R^4 opens in projection %r, not the angle projection" % a.get("projection"))
+    shown = json.loads(html.unescape(a["vertices"]))
+    lines = [l.split() for l in open(points_path) if l.strip() and not l.startswith("#")][2:]
+    expected = []
+    for x in lines[:len(shown) // 3]:
+        x1, x2, x3, x4 = map(float, x)
+        theta, phi = math.atan2(x2, x1), math.atan2(x4, x3)
+        expected += [(1 + 0.45 * math.cos(phi)) * math.cos(theta), (1 + 0.45 * math.cos(phi)) * math.sin(theta),
+                     0.45 * math.sin(phi)]
+    if len(shown) < 9 or any(abs(s - e) > 1e-5 for s, e in zip(shown, expected)):
+        fail("the page's torus vertices %s are not the angle projection %s" % (shown[:6], expected[:6]))
+    print("projection: torus of revolution by the angles; %d vertices compared" % (len(shown) // 3))
+
+
 def main():
     if len(sys.argv) != 4:
         print(__doc__)
@@ -148,6 +231,7 @@ def main():
 
     with tempfile.TemporaryDirectory() as profile:
         dom = chromium(browser, profile, "--dump-dom", "file://" + os.path.abspath(page))
+    check_page(dom, certificate, os.path.join(fixtures, "report", "clifford-torus-net.txt"))
     status = re.search(r'<div id="render-status"([^>]*)>', dom)
     if not status:
         fail("no #render-status in the DOM")
@@ -170,6 +254,26 @@ def main():
     if [w["witness"] for w in data["witnesses"]] != [w for c in certificate["checks"] for w in c["witnesses"]]:
         fail("the page's data does not hold the certificate's witnesses")
     print("witnesses: %d listed, as in the certificate (refuted checks %s)" % (len(shown), refuted))
+
+    # A certified bound the page's estimates contradict (the thickness bound raised above the
+    # thinnest simplex, in a copy of the page's data) is shown as an error, not clipped away.
+    with open(page, encoding="utf-8") as f:
+        text = f.read()
+    block = re.search(r'(<script type="application/json" id="delcert-data">)(.*?)(</script>)', text, re.S)
+    tampered = json.loads(block.group(2))
+    tampered["margins"]["thickness"]["2"]["min_thickness"]["certified_lower_bound"] = "0.3"
+    bad_page = os.path.join(work, "report-contradiction.html")
+    with open(bad_page, "w", encoding="utf-8") as f:
+        f.write(text[:block.start(2)] + json.dumps(tampered).replace("<", "\\u003c") + text[block.end(2):])
+    with tempfile.TemporaryDirectory() as profile:
+        bad_dom = chromium(browser, profile, "--dump-dom", "file://" + os.path.abspath(bad_page))
+    hist = re.search(r'<div class="hist"([^>]*data-quantity="thickness"[^>]*)>(.*?)(?=<div class="hist"|<h2>)', bad_dom, re.S)
+    if not hist:
+        fail("no thickness histogram in the tampered page")
+    a = dict(re.findall(r'data-([a-z]+)="([^"]*)"', hist.group(1)))
+    if int(a.get("beyond", "0")) == 0 or 'class="contradiction"' not in hist.group(2) or "ERROR" not in hist.group(2):
+        fail("estimates below a certified lower bound are not shown as an error: " + hist.group(0)[:400])
+    print("contradiction: %s thickness estimates below a raised bound, shown as an error" % a["beyond"])
 
     shot = os.path.join(work, "report.png")
     with tempfile.TemporaryDirectory() as profile:

@@ -58,7 +58,7 @@ TEST_F(HtmlReport, HoldsTheChecksTheWitnessesAndTheLibraries) {
   const std::string page = format_html_report(certificate(), points, &complex);
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(page.find("verdict: <span class=\"verdict\">REFUTED</span>"), std::string::npos);
-  EXPECT_EQ(count(page, "<tr class=\"verdict-"), 4u);  // one row per check
+  EXPECT_EQ(count(page, "<tr id=\"check-"), 4u);  // one row per check
   // One list item per witness, in the certificate's order, with the vertices it is about.
   std::regex item(R"re(<li class="witness [^"]*" data-index="(\d+)" data-check="(\d+)" data-kind="([^"]*)" data-simplex="([^"]*)")re");
   std::vector<std::string> seen;
@@ -99,6 +99,53 @@ TEST_F(HtmlReport, CertificateTextCannotBreakOutOfThePage) {
   EXPECT_NE(page.find("&lt;/script&gt;&lt;script&gt;alert(1)&lt;/script&gt;"), std::string::npos);
   EXPECT_NE(page.find("\\u003c/script>\\u003cscript>alert(1)\\u003c/script>"), std::string::npos);
   EXPECT_NE(page.find("2 of 8 &lt;b&gt;not&lt;/b&gt;"), std::string::npos);
+}
+
+// What needs a look comes first: REFUTED, then UNDECIDED, then CERTIFIED, then REPORT (issue 41).
+TEST_F(HtmlReport, RefutedRowsComeFirst) {
+  const std::string page = format_html_report(certificate(), points, &complex);
+  std::vector<std::string> order;
+  const std::regex row("<tr id=\"check-([0-9]+)\" class=\"verdict-([A-Z]+)\">");
+  for (std::sregex_iterator it(page.begin(), page.end(), row), end; it != end; ++it) order.push_back((*it)[2].str() + " " + (*it)[1].str());
+  EXPECT_EQ(order, (std::vector<std::string>{"REFUTED 4", "UNDECIDED 11", "CERTIFIED 1", "REPORT 2"}));
+  EXPECT_NE(page.find("needs a look: <a href=\"#check-4\" class=\"verdict-REFUTED\">REFUTED check 4 consistency</a>, "
+                      "<a href=\"#check-11\" class=\"verdict-UNDECIDED\">UNDECIDED check 11 covering</a>"),
+            std::string::npos);
+}
+
+// Margins read as words and short numbers, each bound rounded in its safe direction (a lower bound
+// down, an upper bound up), never as the certificate's JSON.
+TEST_F(HtmlReport, MarginsAreNumbersAPersonReads) {
+  nlohmann::json c = certificate();
+  c["checks"][0]["margin"] = nlohmann::json::parse(R"({"at_point": 6,
+      "max_residual": {"certified_upper_bound": "1.216524007297204e-16", "enclosure": ["1.2e-16", "1.216524007297204e-16"]}})");
+  c["checks"][2]["margin"] = nlohmann::json::parse(R"({"2": {"faces": 190, "min_thickness":
+      {"certified_lower_bound": "0.18666176406945584", "enclosure": ["0.18666176406945584", "0.1866618530767847"]},
+      "simplex": [11, 34, 89]}, "factor": {"certified_lower_bound": "1.5453796367381597e-10"},
+      "covering_radius": {"certified_lower_bound": "0.5557597393439546", "certified_upper_bound": "0.5616461195020096"},
+      "attained_near": ["0.5291591255209892", "-0.848518073646868"], "max_radius_squared": {"certified_upper_bound": "0.37481315091323053"},
+      "min_power_margin": {"certified_lower_bound": "0.00012345"}})");
+  const std::string page = format_html_report(c, points, &complex);
+  auto margin_of = [&](int id) {
+    const std::size_t row = page.find("<tr id=\"check-" + std::to_string(id) + "\"");
+    const std::size_t at = page.find("<td class=\"margin\">", row);
+    return page.substr(at, page.find("</td>", at) - at);
+  };
+  EXPECT_EQ(margin_of(1), "<td class=\"margin\"><div>at point: 6</div><div>max residual: &le; 1.22e-16 (certified)</div>");
+  const std::string m = margin_of(2);
+  EXPECT_NE(m.find("<div>dimension 2: faces 190, min thickness &ge; 0.186 (certified), simplex [11, 34, 89]</div>"),
+            std::string::npos) << m;
+  EXPECT_NE(m.find("factor: &ge; 1.54e-10 (certified)"), std::string::npos) << m;
+  EXPECT_NE(m.find("covering radius: in [0.555, 0.562] (certified)"), std::string::npos) << m;
+  EXPECT_NE(m.find("attained near: (0.529, -0.849)"), std::string::npos) << m;
+  EXPECT_NE(m.find("max radius squared: &le; 0.375 (certified)"), std::string::npos) << m;
+  EXPECT_NE(m.find("min power margin: &ge; 0.000123 (certified)"), std::string::npos) << m;
+  EXPECT_EQ(margin_of(4), "<td class=\"margin\">&mdash;");
+  for (int id : {1, 2, 4, 11}) {
+    const std::string text = margin_of(id).substr(std::string("<td class=\"margin\">").size());
+    EXPECT_EQ(text.find_first_of("{}\""), std::string::npos) << text;  // no JSON
+    EXPECT_FALSE(std::regex_search(text, std::regex("\\.[0-9]*[1-9][0-9]{4}"))) << text;  // no 17-digit numbers
+  }
 }
 
 TEST_F(HtmlReport, SameInputsSameBytes) {

@@ -80,11 +80,24 @@ std::vector<Refused> refused_cases() {
       s + "--eps abc", "--eps: 'abc' is not a number; write a decimal or a fraction, e.g. 0.1 or 1/10",
       // An eps whose net would need more than the dense sample's cap: refused at once (it ran for hours).
       s + "--eps 1e-300",
+      // The suggestion is one that is accepted (it was 0.0066, refused: tests/core/sampling checks it).
       "--eps: 1e-300 is too small for this command: its eps-net needs a dense sample of more than 1e308 points, more "
-      "than the cap of 4e+06; give eps >= 0.0066",
+      "than the cap of 4e+06 (about 30 per net point: nets of at most about 133333 points); give eps >= 0.0069",
       "refine --manifold builtin:sphere-2 --out @OUT@ --eps 1e-3",
       "--eps: 0.001 is too small for this command: its eps-net needs a dense sample of about 2.02e+08 points, more "
-      "than the cap of 4e+06; give eps >= 0.0071",
+      "than the cap of 4e+06 (about 30 per net point: nets of at most about 133333 points); give eps >= 0.0071",
+      // A built-in's name without builtin:, and misspelt built-in names, name the nearest built-in.
+      "sample --manifold sphere-2 --eps 0.5 --out @OUT@",
+      "delcert: sphere-2: no such file; for the built-in manifold, write --manifold builtin:sphere-2",
+      "sample --manifold builtin:sphere2 --eps 0.5 --out @OUT@",
+      "delcert: builtin:sphere2: no built-in manifold 'sphere2'; did you mean builtin:sphere-2? known: clifford-torus-2, "
+      "clifford-torus-3, so3, sphere-2, sphere-3, torus-of-revolution",
+      "refine --manifold builtin:clifford-torus --eps 0.5 --out @OUT@",
+      "delcert: builtin:clifford-torus: no built-in manifold 'clifford-torus'; did you mean builtin:clifford-torus-2? "
+      "known: clifford-torus-2, clifford-torus-3, so3, sphere-2, sphere-3, torus-of-revolution",
+      "sample --manifold builtin:kleinbottle --eps 0.5 --out @OUT@",
+      "delcert: builtin:kleinbottle: no built-in manifold 'kleinbottle'; known: clifford-torus-2, clifford-torus-3, so3, "
+      "sphere-2, sphere-3, torus-of-revolution",
       // --threads: CLI::NonNegativeNumber printed DBL_MAX with all its digits.
       tangential + "--threads -1", "--threads: -1 is negative" + threads,
       tangential + "--threads 257", "--threads: 257 is above 256" + threads,
@@ -101,6 +114,14 @@ std::vector<Refused> refused_cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, DelcertRefusedOption, ::testing::ValuesIn(refused_cases()));
+
+// sample --help says that the dense sample, hence the net, is capped, and what happens beyond.
+TEST(DelcertCli, SampleHelpNamesTheCap) {
+  auto r = run(binary("delcert") + " sample --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("capped at 4000000 points (nets of at most about 133k points)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("names the smallest eps that fits"), std::string::npos) << r.output;
+}
 
 // refine's constants are exact rationals: one beyond double's range names the limit, not its digits.
 TEST(DelcertCli, RefineEpsBeyondDoubleNamesTheLimit) {

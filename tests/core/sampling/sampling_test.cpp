@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <regex>
 
 #include "core/spatial/neighbour_index.hpp"
+#include "core/refine/parameters.hpp"
+#include "io/input_error.hpp"
 #include "io/spec.hpp"
 
 namespace delcert::sampling {
@@ -125,6 +129,65 @@ TEST(EpsNetEstimate, WithinAFactorTwoOfTheNet) {
   EpsNetOptions tiny;
   tiny.eps = 1e-300;
   EXPECT_GT(estimate_eps_net(sphere, tiny).dense_points, 1e300);
+}
+
+}  // namespace
+}  // namespace delcert::sampling
+
+namespace delcert::sampling {
+namespace {
+
+// The eps that `delcert sample` and `refine` suggest when they refuse one as too small, read back
+// as --eps is (refine::parse_eps_option, then the double below or at the decimal), is accepted:
+// it was rounded to 0.0066 and refused at 0.0066 (issue 41). Two significant digits, never below
+// the cap's extrapolated eps.
+TEST(EpsNetSize, TheSuggestedEpsIsAccepted) {
+  const std::regex suggestion("give eps >= ([0-9.e+-]+)$");
+  for (const char* name : {"sphere-2", "clifford-torus-2", "sphere-3", "so3", "torus-of-revolution"})
+    for (double eps : {1e-300, 1e-4, 1e-3, 0.005, 0.0066}) {
+      manifold::Manifold manifold(io::read_spec(std::string("builtin:") + name));
+      EpsNetOptions o;
+      o.eps = eps;
+      std::string text;
+      try {
+        check_eps_net_size(manifold, o);
+        continue;  // accepted as it is (e.g. 0.005 on a small manifold)
+      } catch (const io::InputError& e) {
+        std::smatch m;
+        const std::string message = e.what();
+        ASSERT_TRUE(std::regex_search(message, m, suggestion)) << message;
+        text = m[1].str();
+        EXPECT_NE(message.find("more than the cap of 4e+06"), std::string::npos) << message;
+      }
+      EXPECT_EQ(text, smallest_eps_within_cap(manifold, o));
+      // Two significant digits: the mantissa, without its point, leading and trailing zeros.
+      std::string digits = text.substr(0, text.find('e'));
+      digits.erase(std::remove(digits.begin(), digits.end(), '.'), digits.end());
+      digits.erase(0, digits.find_first_not_of('0'));
+      digits.erase(digits.find_last_not_of('0') + 1);
+      EXPECT_LE(digits.size(), 2u) << text;
+      EpsNetOptions back = o;
+      back.eps = refine::parse_eps_option(text).value.get_d();
+      EXPECT_GE(back.eps, estimate_eps_net(manifold, o).eps_at_cap * (1 - 1e-12)) << name << " " << text;
+      EXPECT_NO_THROW(check_eps_net_size(manifold, back)) << name << " eps " << eps << " -> " << text;
+    }
+}
+
+// When the dense sample reaches max_dense before it is `oversampling` times the net, the result
+// says so (delcert sample then warns); when it does not, it does not.
+TEST(EpsNetSize, TheResultSaysWhenTheDenseSampleHitTheCap) {
+  manifold::Manifold sphere(io::read_spec("builtin:sphere-2"));
+  EpsNetOptions o;
+  o.eps = 0.1;
+  o.min_dense = 4000;
+  o.max_dense = 5000;
+  const EpsNetResult capped = eps_net(sphere, o);
+  EXPECT_TRUE(capped.dense_capped);
+  EXPECT_EQ(capped.dense_size, 5000u);
+  EXPECT_LT(static_cast<double>(capped.dense_size), o.oversampling * static_cast<double>(capped.points.size()));
+  o.eps = 0.5;
+  o.max_dense = 4'000'000;
+  EXPECT_FALSE(eps_net(sphere, o).dense_capped);
 }
 
 }  // namespace
