@@ -8,7 +8,7 @@ if [ "${CI:-}" = "true" ]; then export DELCERT_WERROR=ON; fi
 bash scripts/build.sh -DDELCERT_MPI=ON
 cd build
 # After setup.sh every optional part is there: its tests must be too, not quietly left out.
-for label in python browser install mpi; do
+for label in python docs browser install mpi; do
   if ! ctest -N -L "$label" | grep -q "Total Tests: [1-9]"; then
     echo "test.sh: no tests with label $label were configured (see cmake's status lines in build/)" >&2
     exit 1
