@@ -218,27 +218,15 @@ def test_bad_residual_tolerance_is_refused_with_the_commands_message(tmp_path):
 
 # ------------------------------------------------------------------------------------------ fix_out
 
-CGAL_SPHERE = FIXTURES / "certify" / "cgal-mesh-sphere.off"  # CGAL's mesher: exactly Del_RM of its vertices
-
-
-def flipped_obj(path):
-    """CGAL's sphere mesh as OBJ with the edge a-b of its face 0 flipped to c-d; returns (a, b, c, d), 0-based."""
-    lines = [line for line in CGAL_SPHERE.read_text().splitlines() if line.strip() and not line.startswith("#")]
-    n, f = (int(x) for x in lines[1].split()[:2])
-    vertices = [line.split()[:3] for line in lines[2:2 + n]]
-    faces = [[int(x) for x in line.split()[1:4]] for line in lines[2 + n:2 + n + f]]
-    a, b, c = faces[0]
-    j = next(j for j in range(1, f) if a in faces[j] and b in faces[j])
-    d = next(v for v in faces[j] if v not in (a, b))
-    faces[0], faces[j] = [a, d, c], [d, b, c]
-    path.write_text("".join(f"v {' '.join(v)}\n" for v in vertices) +
-                    "".join(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n" for t in faces))
-    return a, b, c, d
+# CGAL's sphere mesh with the edge 0-12 (0-based) of its face 0 flipped to 58-196, written by
+# fixtures/meshes/make_meshes.py (the same fixture as docs/tutorial.md).
+FLIPPED = FIXTURES / "meshes" / "sphere-one-flip.obj"
+FLIPPED_EDGE, ITS_FLIP = (58, 196), (0, 12)
 
 
 def test_fix_out_writes_the_commands_fixed_mesh_and_the_edges_are_in_the_certificate(tmp_path):
-    mesh, fixed, cli_fixed = tmp_path / "flipped.obj", tmp_path / "fixed.obj", tmp_path / "cli-fixed.obj"
-    a, b, c, d = flipped_obj(mesh)
+    mesh, fixed, cli_fixed = FLIPPED, tmp_path / "fixed.obj", tmp_path / "cli-fixed.obj"
+    (c, d), (a, b) = FLIPPED_EDGE, ITS_FLIP
     cert = delcert.certify("builtin:sphere-2", mesh, mesh, threads=THREADS, times=False, fix_out=fixed,
                            out=tmp_path / "py.json")
     assert cert["verdict"] == "REFUTED"
@@ -261,12 +249,11 @@ def test_fix_out_writes_the_commands_fixed_mesh_and_the_edges_are_in_the_certifi
 
 
 def test_fix_out_is_refused_before_any_work_where_it_cannot_be_written(tmp_path):
-    mesh = tmp_path / "flipped.obj"
-    flipped_obj(mesh)
+    mesh = FLIPPED
     with pytest.raises(delcert.InputError, match="fix_out needs complex given as a surface mesh file"):
         delcert.certify("builtin:sphere-2", OCTAHEDRON, [[0, 1, 2]], fix_out=tmp_path / "x.obj")
     with pytest.raises(delcert.InputError, match="--fix-out"):  # not the mesh's format
         delcert.certify("builtin:sphere-2", mesh, mesh, fix_out=tmp_path / "x.stl", out=tmp_path / "c.json")
     with pytest.raises(delcert.InputError, match="--fix-out"):  # the input itself
         delcert.certify("builtin:sphere-2", mesh, mesh, fix_out=mesh)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["flipped.obj"]
+    assert list(tmp_path.iterdir()) == []
